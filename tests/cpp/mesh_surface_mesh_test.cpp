@@ -1,0 +1,245 @@
+// Connectivity tests of SurfaceMesh: construction from soups, circulators, edits, and a
+// property test of thousands of random edits with validate() after each one.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mesh/build_from_triangles.h"
+#include "mesh/primitives.h"
+#include "mesh/surface_mesh.h"
+
+using namespace adasculpt;
+using namespace adasculpt::mesh;
+
+namespace {
+
+int euler_characteristic(const SurfaceMesh& m) {
+  return int(m.n_vertices()) - int(m.n_edges()) + int(m.n_faces());
+}
+
+int boundary_loops(const SurfaceMesh& m) {
+  std::vector<char> seen(m.halfedges_size(), 0);
+  int loops = 0;
+  for (Halfedge h : m.halfedges()) {
+    if (!m.is_boundary(h) || seen[h.idx]) continue;
+    ++loops;
+    Halfedge g = h;
+    do {
+      seen[g.idx] = 1;
+      g = m.next(g);
+    } while (g != h);
+  }
+  return loops;
+}
+
+}  // namespace
+
+TEST(SurfaceMesh, IcosphereIsClosedGenusZero) {
+  SurfaceMesh m = make_icosphere(2);
+  EXPECT_EQ(m.n_faces(), 320u);
+  EXPECT_EQ(m.n_vertices(), 162u);
+  EXPECT_EQ(euler_characteristic(m), 2);
+  EXPECT_EQ(boundary_loops(m), 0);
+  EXPECT_NO_THROW(m.validate());
+  size_t valence_sum = 0;
+  for (Vertex v : m.vertices()) valence_sum += m.valence(v);
+  EXPECT_EQ(valence_sum, 2 * m.n_edges());
+}
+
+TEST(SurfaceMesh, GridHasOneBoundaryLoop) {
+  SurfaceMesh m = make_grid(4);
+  EXPECT_EQ(m.n_vertices(), 25u);
+  EXPECT_EQ(m.n_faces(), 32u);
+  EXPECT_EQ(boundary_loops(m), 1);
+  EXPECT_EQ(euler_characteristic(m), 1);
+  int boundary_vertices = 0;
+  for (Vertex v : m.vertices()) boundary_vertices += m.is_boundary(v);
+  EXPECT_EQ(boundary_vertices, 16);
+}
+
+TEST(SurfaceMesh, BoxIsClosed) {
+  SurfaceMesh m = make_box(2, 3, 4);
+  EXPECT_EQ(euler_characteristic(m), 2);
+  EXPECT_EQ(boundary_loops(m), 0);
+}
+
+TEST(SurfaceMesh, FaceCirculatorSkipsBoundaryGap) {
+  SurfaceMesh m = make_grid(2);
+  for (Vertex v : m.vertices()) {
+    size_t faces = 0;
+    for (Face f : m.faces(v)) {
+      EXPECT_TRUE(f.is_valid());
+      ++faces;
+    }
+    EXPECT_EQ(faces, m.is_boundary(v) ? m.valence(v) - 1 : m.valence(v));
+  }
+}
+
+TEST(BuildFromTriangles, SplitsNonManifoldVertex) {
+  // Two triangles touching at vertex 0 only.
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  std::vector<std::array<std::uint32_t, 3>> t = {{0, 1, 2}, {0, 3, 4}};
+  BuildReport report;
+  SurfaceMesh m = build_from_triangles(p, t, &report);
+  EXPECT_EQ(m.n_vertices(), 6u);
+  EXPECT_EQ(report.split_vertices, 1u);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("non-manifold"), std::string::npos);
+}
+
+TEST(BuildFromTriangles, RejectsNonManifoldEdgeNamingVertices) {
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  std::vector<std::array<std::uint32_t, 3>> t = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  try {
+    build_from_triangles(p, t);
+    FAIL() << "expected a TopologyError";
+  } catch (const TopologyError& e) {
+    EXPECT_STREQ(e.what(), "non-manifold edge between vertices 0 and 1 (3 faces)");
+  }
+}
+
+TEST(BuildFromTriangles, RejectsInconsistentOrientation) {
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  std::vector<std::array<std::uint32_t, 3>> t = {{0, 1, 2}, {0, 1, 3}};
+  try {
+    build_from_triangles(p, t);
+    FAIL() << "expected a TopologyError";
+  } catch (const TopologyError& e) {
+    EXPECT_STREQ(e.what(), "inconsistent face orientation at the edge between vertices 0 and 1");
+  }
+}
+
+TEST(BuildFromTriangles, DropsRepeatedIndexFacesAndRejectsEmpty) {
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  BuildReport report;
+  SurfaceMesh m = build_from_triangles(p, {{0, 1, 2}, {0, 0, 1}}, &report);
+  EXPECT_EQ(m.n_faces(), 1u);
+  EXPECT_EQ(report.dropped_faces, 1u);
+  EXPECT_THROW(build_from_triangles(p, {{0, 0, 1}}), TopologyError);
+  EXPECT_THROW(build_from_triangles(p, {{0, 1, 7}}), TopologyError);
+}
+
+TEST(SurfaceMesh, SplitCollapseFlipKeepCounts) {
+  SurfaceMesh m = make_icosphere(1);
+  const size_t v0 = m.n_vertices(), f0 = m.n_faces();
+  Vertex v = m.split(Edge(0), Point(0.0));
+  m.validate();
+  EXPECT_EQ(m.valence(v), 4u);
+  EXPECT_EQ(m.n_vertices(), v0 + 1);
+  EXPECT_EQ(m.n_faces(), f0 + 2);
+  Halfedge h = m.halfedge(v);
+  ASSERT_TRUE(m.is_collapse_ok(h));
+  m.collapse(h);
+  m.validate();
+  EXPECT_EQ(m.n_vertices(), v0);
+  EXPECT_EQ(m.n_faces(), f0);
+  Edge e(5);
+  ASSERT_TRUE(m.is_flip_ok(e));
+  m.flip(e);
+  m.validate();
+  m.garbage_collection();
+  m.validate();
+  EXPECT_EQ(m.n_vertices(), m.vertices_size());
+  EXPECT_EQ(euler_characteristic(m), 2);
+}
+
+TEST(SurfaceMesh, BoundarySplitAndCollapse) {
+  SurfaceMesh m = make_grid(3);
+  Edge boundary_edge;
+  for (Edge e : m.edges())
+    if (m.is_boundary(e)) {
+      boundary_edge = e;
+      break;
+    }
+  Vertex v = m.split(boundary_edge, Point(0.0));
+  m.validate();
+  EXPECT_TRUE(m.is_boundary(v));
+  EXPECT_EQ(m.valence(v), 3u);
+  EXPECT_EQ(boundary_loops(m), 1);
+}
+
+TEST(SurfaceMesh, CollapseRefusesTetrahedronEdge) {
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  SurfaceMesh m = build_from_triangles(p, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+  for (Halfedge h : m.halfedges()) EXPECT_FALSE(m.is_collapse_ok(h));
+  for (Edge e : m.edges()) EXPECT_FALSE(m.is_flip_ok(e));
+}
+
+TEST(SurfaceMesh, CopyIsDeepAndPropertiesFollowGarbageCollection) {
+  SurfaceMesh m = make_icosphere(1);
+  auto tag = m.add_vertex_property<int>("v:tag", -1);
+  for (Vertex v : m.vertices()) tag[v] = int(v.idx);
+  SurfaceMesh copy = m;
+  copy.position(Vertex(0)) = Point(9.0);
+  EXPECT_NE(m.position(Vertex(0)).x, 9.0);
+  // Collapse vertex 0 away; after compaction the tags still name the original vertices.
+  Halfedge h = m.halfedge(Vertex(0));
+  ASSERT_TRUE(m.is_collapse_ok(h));
+  Point p3 = m.position(Vertex(3));
+  m.collapse(h);
+  m.garbage_collection();
+  m.validate();
+  for (Vertex v : m.vertices()) {
+    EXPECT_NE(tag[v], 0);
+    if (tag[v] == 3) {
+      EXPECT_EQ(m.position(v), p3);
+    }
+  }
+  auto copied_tag = copy.get_vertex_property<int>("v:tag");
+  ASSERT_TRUE(copied_tag.is_valid());
+  EXPECT_EQ(copied_tag[Vertex(0)], 0);
+}
+
+// The property test the foundation rests on: random splits, collapses and flips on a sphere
+// and on an open grid, validate() after every one, topology invariants checked throughout.
+class RandomEdits : public ::testing::TestWithParam<int> {};
+
+TEST_P(RandomEdits, TenThousandOperationsKeepTheMeshValid) {
+  const bool open = GetParam() == 1;
+  SurfaceMesh m = open ? make_grid(8) : make_icosphere(2);
+  const int chi = euler_characteristic(m);
+  const int loops = boundary_loops(m);
+  std::mt19937 rng(1234 + GetParam());
+  int splits = 0, collapses = 0, flips = 0;
+  for (int step = 0; step < 10000; ++step) {
+    std::vector<Edge> live;
+    // Sample a random live edge (retry on deleted slots).
+    Edge e;
+    for (int tries = 0; tries < 1000 && !e.is_valid(); ++tries) {
+      Edge c(std::uniform_int_distribution<Index>(0, Index(m.edges_size() - 1))(rng));
+      if (!m.is_deleted(c)) e = c;
+    }
+    ASSERT_TRUE(e.is_valid());
+    int op = std::uniform_int_distribution<int>(0, 2)(rng);
+    // Keep the mesh between 100 and 2000 faces so all three operations stay exercised.
+    if (m.n_faces() < 100) op = 0;
+    if (m.n_faces() > 2000) op = 1;
+    if (op == 0) {
+      Point mid = 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1)));
+      m.split(e, mid);
+      ++splits;
+    } else if (op == 1) {
+      Halfedge h = m.halfedge(e, std::uniform_int_distribution<unsigned>(0, 1)(rng));
+      if (!m.is_collapse_ok(h)) continue;
+      m.collapse(h);
+      ++collapses;
+    } else {
+      if (!m.is_flip_ok(e)) continue;
+      m.flip(e);
+      ++flips;
+    }
+    ASSERT_NO_THROW(m.validate()) << "after step " << step << " (op " << op << ")";
+    ASSERT_EQ(euler_characteristic(m), chi) << "step " << step;
+    if (step % 500 == 0) {
+      m.garbage_collection();
+      ASSERT_NO_THROW(m.validate());
+      ASSERT_EQ(boundary_loops(m), loops);
+    }
+  }
+  EXPECT_GT(splits, 1000);
+  EXPECT_GT(collapses, 1000);
+  EXPECT_GT(flips, 1000);
+  EXPECT_EQ(boundary_loops(m), loops);
+}
+
+INSTANTIATE_TEST_SUITE_P(SphereAndGrid, RandomEdits, ::testing::Values(0, 1));
