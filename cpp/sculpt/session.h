@@ -1,0 +1,108 @@
+#pragma once
+// Session: the one stateful object of the core. It owns the mesh, the remeshing settings, the
+// grab in progress and the undo history, and reports what each call changed and how long the
+// last frame took. The CLI (replay), the wasm bindings and the tests all drive the core through it.
+//
+// Undo model: every grab (grab_begin .. grab_end) and every whole-mesh remesh() is one undo step.
+// A step snapshots the mesh when it starts (a deep copy of the SurfaceMesh, compacted first), so
+// undo restores positions bit for bit and the exact connectivity. The history is bounded
+// (kMaxUndoSteps steps and kMaxUndoBytes bytes of snapshots; the oldest steps are dropped first).
+//
+// During a grab the mesh is never garbage-collected: it may contain deleted slots, and readers
+// must skip them (mesh().is_deleted(...)). grab_end() compacts it.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "deform/handle_transform.h"
+#include "geometry/quality.h"
+#include "io/mesh_io.h"
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::sculpt {
+
+// Milliseconds spent in each phase of the last grab_drag() frame (or of the last remesh()).
+struct FrameTimings {
+  double roi_ms = 0, field_ms = 0, refine_ms = 0, deform_ms = 0, remesh_ms = 0, total_ms = 0;
+};
+
+// What changed since the last clear_changes(). topology_changed: faces or vertices were added or
+// removed (renderers must re-read indices); everything: re-read the whole mesh (load, undo,
+// redo, whole remesh). touched_vertices: vertices whose positions may have changed (no duplicates
+// guaranteed only per frame; may contain vertices deleted since).
+struct ChangeSet {
+  bool topology_changed = false;
+  bool everything = false;
+  std::vector<mesh::Vertex> touched_vertices;
+};
+
+class Session {
+ public:
+  static constexpr size_t kMaxUndoSteps = 64;
+  static constexpr size_t kMaxUndoBytes = size_t(512) << 20;
+
+  Session();
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  // Replaces the mesh; resets the history and the settings (defaults relative to the new
+  // bounding-box diagonal: epsilon 0.05%, min 0.2%, max 5%, features off). Ends any grab.
+  void load(mesh::SurfaceMesh mesh);
+  // io::load_mesh_from_memory; on error throws and keeps the current mesh.
+  void load_bytes(const uint8_t* data, size_t size, const std::string& name_hint);
+  void load_file(const std::string& path);
+  bool has_mesh() const;
+  const mesh::SurfaceMesh& mesh() const;
+
+  // Keys: epsilon, min_length, max_length (number = absolute length, or a string "0.05%" =
+  // percent of the bounding-box diagonal), features (dihedral angle in degrees, 0 = off).
+  // Unknown keys and bad values throw std::invalid_argument naming the field; on error nothing
+  // changes. Keys not given keep their current value.
+  void set_settings(const nlohmann::json& s);
+  // {"epsilon":..., "min_length":..., "max_length":..., "features":..., "diagonal":...} (absolute).
+  nlohmann::json settings() const;
+
+  // Ray against the current surface; *hit = first intersection. False when nothing is hit.
+  bool pick(const Point& origin, const Vec3& dir, Point* hit) const;
+
+  // Starts a grab at the surface point closest to center (geodesic radii, absolute lengths).
+  // Throws std::invalid_argument on non-positive radii or without a mesh; ends a running grab first.
+  void grab_begin(const Point& center, double handle_radius, double roi_radius);
+  // One frame: `total` is the transform since grab_begin. ROI + field, refinement, deformation
+  // by the increment since the last frame, one remeshing iteration on the ROI plus a ring.
+  void grab_drag(const deform::HandleTransform& total);
+  // Ends the grab: compacts the mesh; the grab becomes one undo step.
+  void grab_end();
+  bool grabbing() const;
+
+  // Whole-mesh adaptive remeshing with projection onto the current surface; one undo step.
+  void remesh(int iterations);
+
+  bool undo();
+  bool redo();
+  bool can_undo() const;
+  bool can_redo() const;
+
+  // Runs a session file ({"version":1,"settings":{...},"steps":[...]}, see session_file.h) on
+  // the current mesh and returns the report JSON (frames, frame_ms_median/p95/max, per-phase
+  // medians, vertices, faces, min_angle_deg, mean_min_angle_deg). Throws std::invalid_argument
+  // for invalid files before running anything.
+  nlohmann::json replay(const nlohmann::json& session_file);
+
+  geometry::QualityReport quality() const;
+  const FrameTimings& last_frame() const;
+  const ChangeSet& changes() const;
+  void clear_changes();
+  std::vector<uint8_t> export_bytes(io::Format f) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace adasculpt::sculpt
