@@ -1,0 +1,247 @@
+#include "geometry/aabb_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "geometry/triangle.h"
+
+namespace adasculpt::geometry {
+
+namespace {
+
+double box_distance2(const Point& q, const Point& lo, const Point& hi) {
+  Vec3 d = glm::max(glm::max(lo - q, q - hi), Vec3(0.0));
+  return glm::dot(d, d);
+}
+
+}  // namespace
+
+void TriangleTree::build(std::vector<Point> points, std::vector<std::array<std::uint32_t, 3>> triangles) {
+  points_ = std::move(points);
+  tris_.clear();
+  source_.clear();
+  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    if (t[0] >= points_.size() || t[1] >= points_.size() || t[2] >= points_.size())
+      throw std::out_of_range("TriangleTree::build: triangle " + std::to_string(i) + " refers to a missing point");
+    const Point &a = points_[t[0]], &b = points_[t[1]], &c = points_[t[2]];
+    if (glm::length(glm::cross(b - a, c - a)) == 0.0) continue;
+    tris_.push_back(t);
+    source_.push_back(i);
+  }
+  std::vector<Point> centroids(tris_.size());
+  for (size_t i = 0; i < tris_.size(); ++i)
+    centroids[i] = (points_[tris_[i][0]] + points_[tris_[i][1]] + points_[tris_[i][2]]) / 3.0;
+  std::vector<std::uint32_t> order(tris_.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  nodes_.clear();
+  if (!order.empty()) {
+    nodes_.reserve(2 * order.size() / kLeafSize + 1);
+    build_node(order, centroids, 0, static_cast<std::uint32_t>(order.size()));
+  }
+
+  // Store triangles in leaf order so that a leaf reads one contiguous block.
+  std::vector<std::array<std::uint32_t, 3>> tris(order.size());
+  std::vector<std::uint32_t> source(order.size());
+  corners_.resize(order.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    tris[i] = tris_[order[i]];
+    source[i] = source_[order[i]];
+    corners_[i] = {points_[tris[i][0]], points_[tris[i][1]], points_[tris[i][2]]};
+  }
+  tris_ = std::move(tris);
+  source_ = std::move(source);
+}
+
+void TriangleTree::build(const mesh::SurfaceMesh& mesh) {
+  // Keep vertex slots as they are (deleted ones included) so no remapping is needed;
+  // then translate tree indices (positions in this face list) back to Face indices.
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::uint32_t> faces;
+  tris.reserve(mesh.n_faces());
+  faces.reserve(mesh.n_faces());
+  for (mesh::Face f : mesh.faces()) {
+    mesh::Vertex v[3];
+    mesh.face_vertices(f, v);
+    tris.push_back({v[0].idx, v[1].idx, v[2].idx});
+    faces.push_back(f.idx);
+  }
+  build(mesh.positions(), std::move(tris));
+  for (auto& s : source_) s = faces[s];
+}
+
+// Top-down median split on the longest axis of the centroid bounds. Always halving the
+// triangle count bounds the depth by log2(n) (well under kMaxDepth), so neither this
+// recursion nor the fixed traversal stack can overflow.
+std::uint32_t TriangleTree::build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
+                                       std::uint32_t first, std::uint32_t count) {
+  const auto index = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.push_back(Node{});
+  Point lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  Point clo = lo, chi = hi;
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    for (std::uint32_t k : tris_[order[i]]) {
+      lo = glm::min(lo, points_[k]);
+      hi = glm::max(hi, points_[k]);
+    }
+    clo = glm::min(clo, centroids[order[i]]);
+    chi = glm::max(chi, centroids[order[i]]);
+  }
+  nodes_[index].lo = lo;
+  nodes_[index].hi = hi;
+  if (count <= kLeafSize) {
+    nodes_[index].first = first;
+    nodes_[index].count = count;
+    return index;
+  }
+  const Vec3 extent = chi - clo;
+  const int axis = extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
+  const std::uint32_t half = count / 2;
+  auto begin = order.begin() + first;
+  std::nth_element(begin, begin + half, begin + count,
+                   [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+  build_node(order, centroids, first, half);  // lands at index + 1
+  const std::uint32_t right = build_node(order, centroids, first + half, count - half);
+  nodes_[index].first = right;
+  nodes_[index].count = 0;
+  return index;
+}
+
+void TriangleTree::test_triangle(const Point& q, std::uint32_t tri, ClosestHit& best) const {
+  const auto& c = corners_[tri];
+  double bary[3];
+  Point p = closest_point_on_triangle(q, c[0], c[1], c[2], bary);
+  Vec3 d = p - q;
+  double d2 = glm::dot(d, d);
+  if (d2 < best.distance2) {
+    best.distance2 = d2;
+    best.point = p;
+    best.triangle = tri;
+    best.bary[0] = bary[0], best.bary[1] = bary[1], best.bary[2] = bary[2];
+  }
+}
+
+// Branch and bound: visit the nearer child first, skip any box farther than the best so far.
+void TriangleTree::search(const Point& q, ClosestHit& best) const {
+  struct Entry {
+    std::uint32_t node;
+    double d2;
+  };
+  Entry stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = {0, box_distance2(q, nodes_[0].lo, nodes_[0].hi)};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.d2 >= best.distance2) continue;
+    const Node& n = nodes_[e.node];
+    if (n.count > 0) {
+      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) test_triangle(q, i, best);
+      continue;
+    }
+    std::uint32_t near = e.node + 1, far = n.first;
+    double dn = box_distance2(q, nodes_[near].lo, nodes_[near].hi);
+    double df = box_distance2(q, nodes_[far].lo, nodes_[far].hi);
+    if (df < dn) std::swap(near, far), std::swap(dn, df);
+    if (df < best.distance2) stack[top++] = {far, df};
+    if (dn < best.distance2) stack[top++] = {near, dn};
+  }
+}
+
+TriangleTree::ClosestHit TriangleTree::closest_point(const Point& q) const {
+  ClosestHit best;
+  best.distance2 = std::numeric_limits<double>::infinity();
+  if (!nodes_.empty()) search(q, best);
+  return best;
+}
+
+TriangleTree::ClosestHit TriangleTree::closest_point(const Point& q, const ClosestHit& hint) const {
+  ClosestHit best;
+  best.distance2 = std::numeric_limits<double>::infinity();
+  // The hint's own distance belongs to another query point; re-measure from q so the bound
+  // is a true upper bound (exact answer, only faster).
+  if (hint.triangle < corners_.size()) test_triangle(q, hint.triangle, best);
+  if (!nodes_.empty()) search(q, best);
+  return best;
+}
+
+TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3& dir) const {
+  RayHit best;
+  if (nodes_.empty()) return best;
+  double t_best = std::numeric_limits<double>::infinity();
+  // Slab test; an axis the ray is parallel to only checks that the origin is inside the slab
+  // (avoids 0 * inf = NaN).
+  Vec3 inv;
+  bool parallel[3];
+  for (int k = 0; k < 3; ++k) {
+    parallel[k] = dir[k] == 0.0;
+    inv[k] = parallel[k] ? 0.0 : 1.0 / dir[k];
+  }
+  auto box_entry = [&](const Node& n) {
+    double t0 = 0.0, t1 = t_best;
+    for (int k = 0; k < 3; ++k) {
+      if (parallel[k]) {
+        if (origin[k] < n.lo[k] || origin[k] > n.hi[k]) return std::numeric_limits<double>::infinity();
+        continue;
+      }
+      double a = (n.lo[k] - origin[k]) * inv[k], b = (n.hi[k] - origin[k]) * inv[k];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+    }
+    return t0 <= t1 ? t0 : std::numeric_limits<double>::infinity();
+  };
+  struct Entry {
+    std::uint32_t node;
+    double t;
+  };
+  Entry stack[kMaxDepth];
+  int top = 0;
+  double t_root = box_entry(nodes_[0]);
+  if (t_root == std::numeric_limits<double>::infinity()) return best;
+  stack[top++] = {0, t_root};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.t > t_best) continue;
+    const Node& n = nodes_[e.node];
+    if (n.count == 0) {
+      std::uint32_t near = e.node + 1, far = n.first;
+      double tn = box_entry(nodes_[near]), tf = box_entry(nodes_[far]);
+      if (tf < tn) std::swap(near, far), std::swap(tn, tf);
+      if (tf <= t_best) stack[top++] = {far, tf};
+      if (tn <= t_best) stack[top++] = {near, tn};
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      // Moller-Trumbore without back-face culling: the sign of det only tells the side.
+      const auto& c = corners_[i];
+      const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
+      const Vec3 pv = glm::cross(dir, e2);
+      const double det = glm::dot(e1, pv);
+      if (det == 0.0) continue;
+      const double inv_det = 1.0 / det;
+      const Vec3 tv = origin - c[0];
+      const double u = glm::dot(tv, pv) * inv_det;
+      if (u < 0.0 || u > 1.0) continue;
+      const Vec3 qv = glm::cross(tv, e1);
+      const double v = glm::dot(dir, qv) * inv_det;
+      if (v < 0.0 || u + v > 1.0) continue;
+      const double t = glm::dot(e2, qv) * inv_det;
+      if (t < 0.0 || t >= t_best) continue;
+      t_best = t;
+      best.hit = true;
+      best.t = t;
+      best.triangle = i;
+      best.bary[0] = 1.0 - u - v, best.bary[1] = u, best.bary[2] = v;
+      best.point = c[0] + u * e1 + v * e2;
+    }
+  }
+  return best;
+}
+
+}  // namespace adasculpt::geometry

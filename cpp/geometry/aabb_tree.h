@@ -1,0 +1,77 @@
+#pragma once
+// TriangleTree: a bounding volume hierarchy over triangles for exact closest-point and
+// ray queries, e.g. projecting remeshed vertices back onto the reference surface and
+// picking the surface under the mouse.
+//
+// Flat arrays, nodes in depth-first order (left child follows its parent), triangle
+// corners copied into leaf order so a leaf is one contiguous read. Queries use a fixed
+// stack on the call stack and never allocate, so they are safe to run from many threads
+// on one const tree.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "mesh/types.h"
+
+namespace adasculpt::geometry {
+
+class TriangleTree {
+ public:
+  struct ClosestHit {
+    Point point{0.0};
+    std::uint32_t triangle = UINT32_MAX;  // index into triangles()
+    double bary[3] = {0, 0, 0};
+    double distance2 = 0;  // squared distance from the query
+  };
+  struct RayHit {
+    bool hit = false;
+    double t = 0;  // point = origin + t * dir
+    std::uint32_t triangle = UINT32_MAX;
+    Point point{0.0};
+    double bary[3] = {0, 0, 0};
+  };
+
+  // Zero-area triangles are left out: they add nothing to the surface and would only
+  // produce unstable barycentric coordinates.
+  void build(std::vector<Point> points, std::vector<std::array<std::uint32_t, 3>> triangles);
+  // Copies the live faces of the mesh; face_of() maps a tree triangle back to its Face.
+  void build(const mesh::SurfaceMesh& mesh);
+
+  bool empty() const { return tris_.empty(); }
+  const std::vector<Point>& points() const { return points_; }
+  // The kept triangles, in tree order (what ClosestHit::triangle and RayHit::triangle index).
+  const std::vector<std::array<std::uint32_t, 3>>& triangles() const { return tris_; }
+  // The input triangle (or mesh Face) a tree triangle came from.
+  mesh::Face face_of(std::uint32_t tri) const { return mesh::Face(source_[tri]); }
+
+  // Exact nearest point of the surface. Precondition: !empty().
+  ClosestHit closest_point(const Point& q) const;
+  // Warm start: the hint's triangle (typically the previous hit of a nearby query) gives
+  // the initial bound, which prunes most of the tree at once.
+  ClosestHit closest_point(const Point& q, const ClosestHit& hint) const;
+  // Nearest intersection with t >= 0 of the ray origin + t*dir, front or back side.
+  RayHit intersect_ray(const Point& origin, const Vec3& dir) const;
+
+ private:
+  struct Node {
+    Point lo, hi;
+    std::uint32_t first;  // leaf: first triangle; inner: index of the right child
+    std::uint32_t count;  // > 0 for a leaf
+  };
+  static constexpr std::uint32_t kLeafSize = 4;
+  static constexpr int kMaxDepth = 64;
+
+  std::uint32_t build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
+                          std::uint32_t first, std::uint32_t count);
+  void search(const Point& q, ClosestHit& best) const;
+  void test_triangle(const Point& q, std::uint32_t tri, ClosestHit& best) const;
+
+  std::vector<Point> points_;
+  std::vector<std::array<std::uint32_t, 3>> tris_;
+  std::vector<std::array<Point, 3>> corners_;  // per tree triangle
+  std::vector<std::uint32_t> source_;          // per tree triangle: input index / Face index
+  std::vector<Node> nodes_;
+};
+
+}  // namespace adasculpt::geometry

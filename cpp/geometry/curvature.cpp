@@ -1,0 +1,78 @@
+#include "geometry/curvature.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/triangle.h"
+
+namespace adasculpt::geometry {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// Calls fn(p, q, r) for every face around v, with p = position of v and p, q, r in the
+// face's own (counter-clockwise) order.
+template <class Fn>
+void for_each_corner(const mesh::SurfaceMesh& mesh, mesh::Vertex v, Fn&& fn) {
+  const Point& p = mesh.position(v);
+  for (mesh::Halfedge h : mesh.halfedges(v)) {
+    if (mesh.is_boundary(h)) continue;
+    fn(p, mesh.position(mesh.to_vertex(h)), mesh.position(mesh.to_vertex(mesh.next(h))));
+  }
+}
+
+}  // namespace
+
+double mixed_voronoi_area(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
+  double area = 0.0;
+  for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
+    const Vec3 pq = q - p, pr = r - p, qr = r - q;
+    const double dot_p = glm::dot(pq, pr), dot_q = -glm::dot(pq, qr), dot_r = glm::dot(pr, qr);
+    const double tri_area = 0.5 * glm::length(glm::cross(pq, pr));
+    if (dot_p < 0) {
+      area += 0.5 * tri_area;
+    } else if (dot_q < 0 || dot_r < 0) {
+      area += 0.25 * tri_area;
+    } else {
+      // Voronoi part: (|pr|^2 cot q + |pq|^2 cot r) / 8.
+      area += 0.125 * (glm::dot(pr, pr) * cotan(p - q, r - q) + glm::dot(pq, pq) * cotan(p - r, q - r));
+    }
+  });
+  return area;
+}
+
+Vec3 cotan_laplacian(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
+  // Per face (p, q, r): edge pq is weighted by the cotangent at r and edge pr by the one at
+  // q; summing over the fan gives cot(alpha) + cot(beta) for every interior edge.
+  Vec3 sum(0.0);
+  for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
+    sum += cotan(p - r, q - r) * (q - p) + cotan(p - q, r - q) * (r - p);
+  });
+  return sum;
+}
+
+double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
+  if (mesh.is_boundary(v)) return 0.0;  // also true for isolated vertices
+  const double area = mixed_voronoi_area(mesh, v);
+  if (!(area > 0.0)) return 0.0;
+  double angle_sum = 0.0;
+  for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
+    angle_sum += std::atan2(glm::length(glm::cross(q - p, r - p)), glm::dot(q - p, r - p));
+  });
+  const double mean = glm::length(cotan_laplacian(mesh, v)) / (4.0 * area);
+  // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn
+  // a 1e-15 defect on a flat patch into a 1e-7 curvature.
+  double defect = kTwoPi - angle_sum;
+  if (std::abs(defect) < 1e-12) defect = 0.0;
+  const double gauss = defect / area;
+  return mean + std::sqrt(std::max(mean * mean - gauss, 0.0));
+}
+
+void max_abs_curvature(const mesh::SurfaceMesh& mesh, std::vector<double>& out) {
+  out.assign(mesh.vertices_size(), 0.0);
+  for (mesh::Vertex v : mesh.vertices()) out[v.idx] = max_abs_curvature(mesh, v);
+}
+
+}  // namespace adasculpt::geometry

@@ -1,0 +1,30 @@
+#pragma once
+// Per-triangle geometry: normals, areas, angles, cotangents and closest points. These are
+// the building blocks of every other geometry routine, so they are written to stay finite
+// on degenerate (zero-area, zero-length-edge) triangles, which real scans contain.
+#include "mesh/surface_mesh.h"
+#include "mesh/types.h"
+
+namespace adasculpt::geometry {
+
+// Unit normal of a face (right-hand rule on its halfedge order); the zero vector for a
+// triangle of zero area.
+Vec3 face_normal(const mesh::SurfaceMesh& mesh, mesh::Face f);
+double face_area(const mesh::SurfaceMesh& mesh, mesh::Face f);
+
+// The interior angles (radians) at a, b and c. atan2(|u x v|, u.v) keeps full precision for
+// angles near 0 and pi, where acos of a normalised dot product loses half its digits.
+// A zero-area triangle yields angles from {0, pi}.
+void triangle_angles(const Point& a, const Point& b, const Point& c, double out_rad[3]);
+
+// Cotangent of the angle between u and v, clamped to +-kMaxCotan so that a sliver gives a
+// large but finite weight; 0 when u or v has zero length.
+constexpr double kMaxCotan = 1e4;
+double cotan(const Vec3& u, const Vec3& v);
+
+// Closest point to p on triangle abc; bary receives its barycentric coordinates
+// (weights of a, b, c, summing to 1). Exact for every Voronoi region of the triangle and
+// correct for degenerate triangles (falls back to the closest point on the edges).
+Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, const Point& c, double bary[3]);
+
+}  // namespace adasculpt::geometry
