@@ -1,0 +1,214 @@
+#include "sculpt/render_buffers.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace adasculpt::sculpt {
+
+using mesh::Face;
+using mesh::SurfaceMesh;
+using mesh::Vertex;
+
+namespace {
+
+void extend(std::uint32_t& begin, std::uint32_t& end, std::uint32_t b, std::uint32_t e) {
+  if (b >= e) return;
+  if (begin >= end) {
+    begin = b;
+    end = e;
+  } else {
+    begin = std::min(begin, b);
+    end = std::max(end, e);
+  }
+}
+
+}  // namespace
+
+void RenderChanges::merge(const RenderChanges& later) {
+  reallocated = reallocated || later.reallocated;
+  indices_changed = indices_changed || later.indices_changed;
+  extend(vertex_begin, vertex_end, later.vertex_begin, later.vertex_end);
+  extend(face_begin, face_end, later.face_begin, later.face_end);
+  vertex_count = later.vertex_count;
+  face_count = later.face_count;
+}
+
+void RenderChanges::everything(std::uint32_t vertices, std::uint32_t faces) {
+  indices_changed = true;
+  vertex_begin = face_begin = 0;
+  vertex_end = vertex_count = vertices;
+  face_end = face_count = faces;
+}
+
+RenderChanges RenderBuffers::take_pending() {
+  RenderChanges out = pending_;
+  pending_ = RenderChanges{};
+  pending_.vertex_count = vertex_count_;
+  pending_.face_count = face_count_;
+  return out;
+}
+
+bool RenderBuffers::reserve(size_t vertex_slots, size_t face_slots) {
+  // 1.5x growth: a grab that keeps splitting reallocates O(log n) times, not once per frame.
+  auto grown = [](size_t have, size_t need) { return std::max({need, have + have / 2, size_t(256)}); };
+  bool realloc = false;
+  if (vertex_slots > vertex_capacity() || positions_.empty()) {
+    size_t cap = grown(vertex_capacity(), vertex_slots);
+    positions_.resize(3 * cap, 0.0f);
+    normals_.resize(3 * cap, 0.0f);
+    stamp_.resize(cap, 0);
+    realloc = true;
+  }
+  if (face_slots > face_capacity() || indices_.empty()) {
+    indices_.resize(3 * grown(face_capacity(), face_slots), 0u);
+    realloc = true;
+  }
+  return realloc;
+}
+
+void RenderBuffers::mark_normal(Vertex v) {
+  if (stamp_[v.idx] == epoch_) return;
+  stamp_[v.idx] = epoch_;
+  normal_queue_.push_back(v);
+}
+
+void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
+  const Point& p = m.position(v);
+  float* out = &positions_[3 * size_t(v.idx)];
+  out[0] = float(p.x);
+  out[1] = float(p.y);
+  out[2] = float(p.z);
+}
+
+// Area-weighted average of the incident face normals: the sum of the corner cross products.
+// Angle weights (an atan2 per corner) cost three times as much per frame, and the remesher keeps
+// triangles well shaped, where the two agree closely.
+void RenderBuffers::write_normal(const SurfaceMesh& m, Vertex v) {
+  Vec3 n(0.0);
+  const Point& p = m.position(v);
+  for (mesh::Halfedge h : m.halfedges(v)) {
+    if (m.is_boundary(h)) continue;
+    n += glm::cross(m.position(m.to_vertex(h)) - p, m.position(m.to_vertex(m.next(h))) - p);
+  }
+  double ln = glm::length(n);
+  if (ln > 0.0 && std::isfinite(ln)) {
+    n /= ln;
+  } else {
+    n = Vec3(0.0, 0.0, 1.0);
+  }
+  float* out = &normals_[3 * size_t(v.idx)];
+  out[0] = float(n.x);
+  out[1] = float(n.y);
+  out[2] = float(n.z);
+}
+
+// The triple drawn for a face slot: its vertices, or (0,0,0) for a deleted face.
+static void current_triple(const SurfaceMesh& m, Face f, std::uint32_t t[3]) {
+  t[0] = t[1] = t[2] = 0;
+  if (m.is_deleted(f)) return;
+  Vertex fv[3];
+  m.face_vertices(f, fv);
+  for (int i = 0; i < 3; ++i) t[i] = fv[i].idx;
+}
+
+bool RenderBuffers::write_face(const SurfaceMesh& m, Face f) {
+  std::uint32_t* out = &indices_[3 * size_t(f.idx)];
+  std::uint32_t t[3];
+  current_triple(m, f, t);
+  if (out[0] == t[0] && out[1] == t[1] && out[2] == t[2]) return false;
+  // The vertices that lost this face and those that gained it both need new normals.
+  const std::uint32_t nv = std::uint32_t(m.vertices_size());
+  for (int i = 0; i < 3; ++i) {
+    if (out[i] < nv && out[i] < vertex_count_ && !m.is_deleted(Vertex(out[i]))) mark_normal(Vertex(out[i]));
+    if (!m.is_deleted(f)) mark_normal(Vertex(t[i]));
+    out[i] = t[i];
+  }
+  return true;
+}
+
+const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
+  const std::uint32_t nv = std::uint32_t(m.vertices_size());
+  const std::uint32_t nf = std::uint32_t(m.faces_size());
+  last_ = RenderChanges{};
+  last_.reallocated = reserve(nv, nf);
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    Vertex v(i);
+    if (m.is_deleted(v)) {
+      std::fill_n(&positions_[3 * size_t(i)], 3, 0.0f);
+      std::fill_n(&normals_[3 * size_t(i)], 3, 0.0f);
+    } else {
+      write_position(m, v);
+      write_normal(m, v);
+    }
+  }
+  for (std::uint32_t i = 0; i < nf; ++i) current_triple(m, Face(i), &indices_[3 * size_t(i)]);
+  // Slots beyond the new counts keep nothing drawable.
+  std::fill(indices_.begin() + 3 * size_t(nf), indices_.begin() + 3 * size_t(std::max(nf, face_count_)), 0u);
+  vertex_count_ = nv;
+  face_count_ = nf;
+  last_.everything(nv, nf);
+  pending_.merge(last_);
+  return last_;
+}
+
+const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* touched, size_t n_touched,
+                                           bool topology_changed, bool everything) {
+  const std::uint32_t nv = std::uint32_t(m.vertices_size());
+  const std::uint32_t nf = std::uint32_t(m.faces_size());
+  // Fewer slots than before only happens after garbage collection, which renumbers everything.
+  if (everything || positions_.empty() || nv < vertex_count_ || nf < face_count_) return rebuild(m);
+
+  last_ = RenderChanges{};
+  last_.reallocated = reserve(nv, nf);
+  if (++epoch_ == 0) {  // wrapped: forget all stamps once every 4 billion updates
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    epoch_ = 1;
+  }
+  normal_queue_.clear();
+
+  auto moved = [&](Vertex v) {
+    write_position(m, v);
+    mark_normal(v);
+    for (Vertex w : m.vertices(v)) mark_normal(w);
+  };
+  for (size_t i = 0; i < n_touched; ++i) {
+    Vertex v = touched[i];
+    if (v.idx < nv && !m.is_deleted(v)) moved(v);
+  }
+  for (std::uint32_t i = vertex_count_; i < nv; ++i) {
+    if (!m.is_deleted(Vertex(i))) moved(Vertex(i));
+  }
+
+  // Faces: a collapse deletes faces that no live vertex reaches any more, and a flip changes
+  // faces without moving a vertex, so the touched set cannot find every changed face. One
+  // compare per face slot finds them all (a few hundred microseconds for 100k faces) and keeps
+  // the upload to the slots that really changed.
+  if (topology_changed || nf != face_count_) {
+    std::uint32_t fb = 0, fe = 0;
+    for (std::uint32_t i = 0; i < nf; ++i) {
+      if (write_face(m, Face(i))) extend(fb, fe, i, i + 1);
+    }
+    last_.face_begin = fb;
+    last_.face_end = fe;
+    last_.indices_changed = fe > fb;
+  }
+  vertex_count_ = nv;
+  face_count_ = nf;
+
+  std::uint32_t vb = 0, ve = 0;
+  for (Vertex v : normal_queue_) {
+    write_normal(m, v);
+    extend(vb, ve, v.idx, v.idx + 1);
+  }
+  last_.vertex_begin = vb;
+  last_.vertex_end = ve;
+  last_.vertex_count = nv;
+  last_.face_count = nf;
+  if (last_.reallocated) last_.everything(nv, nf);  // new arrays on the GPU side: upload all again
+  pending_.merge(last_);
+  return last_;
+}
+
+}  // namespace adasculpt::sculpt

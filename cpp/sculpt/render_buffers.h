@@ -1,0 +1,83 @@
+#pragma once
+// RenderBuffers: the float32/uint32 arrays a GPU draws, kept in step with a SurfaceMesh that
+// changes a little every frame. One entry per vertex SLOT and per face SLOT (deleted slots
+// included, so handles index the buffers directly while a grab leaves garbage in the mesh);
+// a deleted face is written as (0,0,0), which draws nothing.
+//
+// Capacity grows geometrically, so pointers (and typed-array views in the browser) stay valid
+// until an update reports `reallocated`. After warm-up, update() allocates nothing: it rewrites
+// the touched vertices, the normals of their one-ring, and (when the topology changed) the face
+// slots whose triangle differs from what is stored, and reports the dirty ranges so the renderer
+// uploads only those.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::sculpt {
+
+// What one or several updates changed. Ranges are half-open slot ranges [begin, end); an empty
+// range has begin == end. vertex_count / face_count are the slot counts to draw.
+struct RenderChanges {
+  bool reallocated = false;      // capacity grew: every earlier pointer/view is stale, re-read all
+  bool indices_changed = false;  // some face slot got another triangle (or was added/deleted)
+  std::uint32_t vertex_begin = 0, vertex_end = 0;
+  std::uint32_t face_begin = 0, face_end = 0;
+  std::uint32_t vertex_count = 0, face_count = 0;
+
+  bool empty() const { return !reallocated && vertex_begin == vertex_end && face_begin == face_end; }
+  // Marks all `vertices` and `faces` slots dirty (and the indices changed).
+  void everything(std::uint32_t vertices, std::uint32_t faces);
+  // Union of two reports, this one first (counts are the later ones).
+  void merge(const RenderChanges& later);
+};
+
+class RenderBuffers {
+ public:
+  RenderBuffers() = default;
+
+  // Rewrites everything from the mesh.
+  const RenderChanges& rebuild(const mesh::SurfaceMesh& m);
+  // Incremental update. `touched` are vertices whose positions may have changed (may contain
+  // duplicates and deleted vertices); topology_changed says faces were added, removed or flipped;
+  // everything forces a rebuild. Returns this update's changes (also merged into pending()).
+  const RenderChanges& update(const mesh::SurfaceMesh& m, const mesh::Vertex* touched, size_t n_touched,
+                              bool topology_changed, bool everything);
+  // The same from a sculpt::ChangeSet (a template so this header needs no Session).
+  template <class ChangeSetT>
+  const RenderChanges& update(const mesh::SurfaceMesh& m, const ChangeSetT& c) {
+    return update(m, c.touched_vertices.data(), c.touched_vertices.size(), c.topology_changed, c.everything);
+  }
+
+  // Changes accumulated since the last take_pending(): a renderer that does not read after every
+  // update still uploads everything that changed.
+  const RenderChanges& pending() const { return pending_; }
+  RenderChanges take_pending();
+
+  const float* positions() const { return positions_.data(); }  // xyz per vertex slot
+  const float* normals() const { return normals_.data(); }      // xyz per vertex slot, unit length
+  const std::uint32_t* indices() const { return indices_.data(); }  // 3 per face slot
+  std::uint32_t vertex_count() const { return vertex_count_; }
+  std::uint32_t face_count() const { return face_count_; }
+  size_t vertex_capacity() const { return positions_.size() / 3; }
+  size_t face_capacity() const { return indices_.size() / 3; }
+
+ private:
+  bool reserve(size_t vertex_slots, size_t face_slots);  // true when it reallocated
+  void mark_normal(mesh::Vertex v);                     // queue v for a normal refresh (deduplicated)
+  void write_position(const mesh::SurfaceMesh& m, mesh::Vertex v);
+  void write_normal(const mesh::SurfaceMesh& m, mesh::Vertex v);
+  bool write_face(const mesh::SurfaceMesh& m, mesh::Face f);  // true when the stored triple changed
+
+  std::vector<float> positions_, normals_;
+  std::vector<std::uint32_t> indices_;
+  std::uint32_t vertex_count_ = 0, face_count_ = 0;
+  // Deduplication of the normal refresh list without clearing a per-vertex array each frame.
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+  std::vector<mesh::Vertex> normal_queue_;
+  RenderChanges last_, pending_;
+};
+
+}  // namespace adasculpt::sculpt
