@@ -20,4 +20,23 @@ inline Point apply(const HandleTransform& t, const Point& center, const Point& x
   return center + t.translation + t.rotation * (t.scale * (x - center));
 }
 
+// The transform that takes the state after `from` to the state after `to` when both are totals
+// since the grab began (translation delta, scale ratio, rotation R_to * R_from^-1). Applied about
+// the centre after `from` (= the grab centre + from.translation).
+inline HandleTransform increment(const HandleTransform& from, const HandleTransform& to) {
+  HandleTransform d;
+  d.translation = to.translation - from.translation;
+  d.scale = from.scale != 0 ? to.scale / from.scale : 1.0;
+  d.rotation = glm::normalize(to.rotation * glm::inverse(from.rotation));
+  if (d.rotation.w < 0) d.rotation = -d.rotation;  // shortest arc for the slerp
+  return d;
+}
+
+// The transform blended with weight w in [0,1]: translation and scale linearly, rotation by
+// slerp from the identity, about the centre c.
+inline Point blend(const HandleTransform& t, double w, const Point& c, const Point& x) {
+  const glm::dquat r = glm::slerp(glm::dquat(1.0, 0.0, 0.0, 0.0), t.rotation, w);
+  return c + w * t.translation + r * ((1.0 + w * (t.scale - 1.0)) * (x - c));
+}
+
 }  // namespace adasculpt::deform

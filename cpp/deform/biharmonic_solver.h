@@ -1,0 +1,76 @@
+#pragma once
+// The sparse solve behind the blending field; the only translation unit that instantiates
+// Eigen's sparse solvers (they dominate WebAssembly compile time). Eigen stays out of this header.
+//
+// Discretisation (our choice, see PAPER.md section 4 and Botsch & Sorkine 2008): the bi-Laplacian
+// Delta^2 = (M^-1 Lc)^2 with the symmetric cotan matrix Lc and the lumped (barycentric) mass M.
+// Requiring (M^-1 Lc M^-1 Lc w)_i = 0 at a free vertex i is, after multiplying by M, the
+// symmetric system  B^T M^-1 B w_free = -B^T M^-1 g  where B = Lc restricted to the rows that
+// touch a free vertex and the free columns, and g = Lc applied to the known values (1 on the
+// handle, 0 on the fixed rings). B^T M^-1 B is symmetric positive definite, so SimplicialLDLT
+// applies; the L^2 of the uniformly normalised Laplacian would not be symmetric.
+//
+// Reuse between frames:
+//  - the symbolic analysis (AMD ordering, elimination tree) is kept while the sparsity pattern
+//    of the system is identical to the previous one;
+//  - with FieldReuse::CarryFactorization the numeric factorisation is kept as well while the
+//    pattern (= the ROI topology and local numbering) is unchanged, and the new system is solved
+//    by iterative refinement preconditioned with the old factors (x += F_old^-1 (b - A x)).
+//    Deformation changes the cotan weights, so this is an approximation: stats() reports the
+//    relative residual it leaves.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace adasculpt::deform {
+
+enum class FieldReuse {
+  Exact,               // factorise every call (analysis reused when the pattern is unchanged)
+  CarryFactorization,  // keep the factors while the pattern is unchanged; refine iteratively
+};
+
+// B as coordinate triplets (row in [0, n_rows), col in [0, n_free)), one value per row for
+// M^-1 (inv_mass) and for g (known_rhs).
+struct BiharmonicSystem {
+  int n_free = 0, n_rows = 0;
+  std::vector<int> row, col;
+  std::vector<double> value;
+  std::vector<double> inv_mass, known_rhs;
+  void clear(int free, int rows);
+  void add(int r, int c, double v) {
+    row.push_back(r);
+    col.push_back(c);
+    value.push_back(v);
+  }
+};
+
+struct BiharmonicStats {
+  bool analyzed = false, factorized = false;
+  int refinement_steps = 0;
+  double assemble_ms = 0, analyze_ms = 0, factorize_ms = 0, solve_ms = 0;
+  double relative_residual = 0;  // |b - A x| / |b| of the returned solution
+};
+
+class BiharmonicSolver {
+ public:
+  BiharmonicSolver();
+  ~BiharmonicSolver();
+  BiharmonicSolver(const BiharmonicSolver&) = delete;
+  BiharmonicSolver& operator=(const BiharmonicSolver&) = delete;
+
+  // Solves for the free values (x.size() becomes n_free). Throws std::runtime_error when the
+  // factorisation fails (a degenerate region). If laplacian is given it receives, per row, the
+  // Laplacian M^-1 Lc w of the solution (used by the refinement's midpoint estimate).
+  void solve(const BiharmonicSystem& system, std::vector<double>& x, FieldReuse reuse = FieldReuse::Exact,
+             int max_refinement_steps = 3, double refinement_tolerance = 1e-6,
+             std::vector<double>* laplacian = nullptr);
+  // Forgets the cached pattern and factors (e.g. at the start of a grab).
+  void reset();
+  const BiharmonicStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace adasculpt::deform

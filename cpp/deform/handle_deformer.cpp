@@ -1,0 +1,279 @@
+#include "deform/handle_deformer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/triangle.h"
+
+namespace adasculpt::deform {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+}  // namespace
+
+HandleDeformer::HandleDeformer(const DeformOptions& options) : options_(options) {}
+
+void HandleDeformer::grow(size_t n) {
+  if (stamp_.size() >= n) return;
+  const size_t cap = std::max(n, stamp_.size() + stamp_.size() / 2);
+  stamp_.resize(cap, 0);
+  category_.resize(cap, kOutside);
+  index_.resize(cap, -1);
+  row_index_.resize(cap, -1);
+  field_.resize(cap, 0.0);
+  laplacian_.resize(cap, 0.0);
+}
+
+void HandleDeformer::begin(const SurfaceMesh& mesh, const Point& picked, double handle_radius, double roi_radius) {
+  if (!(handle_radius >= 0) || !(roi_radius >= 0) || !std::isfinite(handle_radius) || !std::isfinite(roi_radius))
+    throw std::invalid_argument("grab: handle and ROI radii must be finite and non-negative");
+  center_ = picked;
+  handle_radius_ = handle_radius;
+  roi_radius_ = std::max(roi_radius, handle_radius);
+  previous_total_ = HandleTransform{};
+  first_frame_ = true;
+  result_ = StepResult{};
+  solver_.reset();
+  // Once per grab: the vertex nearest to the picked point (a linear scan; a per-frame search
+  // only looks at the last region).
+  double best = std::numeric_limits<double>::infinity();
+  begin_seed_ = Vertex();
+  for (Vertex v : mesh.vertices()) {
+    if (mesh.is_isolated(v)) continue;
+    const Vec3 d = mesh.position(v) - picked;
+    const double d2 = glm::dot(d, d);
+    if (d2 < best) {
+      best = d2;
+      begin_seed_ = v;
+    }
+  }
+  if (!begin_seed_.is_valid()) throw std::invalid_argument("grab: the mesh has no faces");
+  active_ = true;
+}
+
+void HandleDeformer::end() {
+  active_ = false;
+  result_.region.clear();
+}
+
+double HandleDeformer::field(Vertex v) const { return category(v) == kOutside ? 0.0 : field_[v.idx]; }
+
+Vertex HandleDeformer::find_seed(const SurfaceMesh& mesh) const {
+  if (first_frame_ || result_.region.empty()) return begin_seed_;
+  Vertex seed;
+  double best = std::numeric_limits<double>::infinity();
+  for (Vertex v : result_.region) {
+    if (v.idx >= mesh.vertices_size() || mesh.is_deleted(v) || mesh.is_isolated(v)) continue;
+    const Vec3 d = mesh.position(v) - center_;
+    const double d2 = glm::dot(d, d);
+    if (d2 < best) {
+      best = d2;
+      seed = v;
+    }
+  }
+  return seed.is_valid() ? seed : begin_seed_;
+}
+
+void HandleDeformer::compute_region(const SurfaceMesh& mesh) {
+  grow(mesh.vertices_size());
+  if (++frame_ == 0) {
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    frame_ = 1;
+  }
+  const Vertex seed = find_seed(mesh);
+  if (!seed.is_valid() || mesh.is_deleted(seed)) throw std::logic_error("grab: the handle vertex was removed");
+  seeds_.clear();
+  seeds_.emplace_back(seed, glm::length(mesh.position(seed) - center_));
+  for (Vertex u : mesh.vertices(seed)) seeds_.emplace_back(u, glm::length(mesh.position(u) - center_));
+  geodesic_distance(mesh, seeds_, roi_radius_, geodesic_, options_.edges_only_distance);
+
+  handle_.clear();
+  free_.clear();
+  fixed_.clear();
+  for (Vertex v : geodesic_.order()) {
+    const bool in_handle = geodesic_.distance(v) <= handle_radius_ || handle_.empty();
+    set_category(v, in_handle ? kHandle : kFree);
+    index_[v.idx] = -1;
+    row_index_[v.idx] = -1;
+    (in_handle ? handle_ : free_).push_back(v);
+  }
+  // Two fixed rings outside the ROI.
+  auto add_ring = [&](const std::vector<Vertex>& from, size_t begin, size_t end, Category c) {
+    for (size_t i = begin; i < end; ++i)
+      for (Vertex u : mesh.vertices(from[i]))
+        if (category(u) == kOutside) {
+          set_category(u, c);
+          index_[u.idx] = -1;
+          row_index_[u.idx] = -1;
+          fixed_.push_back(u);
+        }
+  };
+  add_ring(handle_, 0, handle_.size(), kRing1);
+  add_ring(free_, 0, free_.size(), kRing1);
+  const size_t ring1 = fixed_.size();
+  add_ring(fixed_, 0, ring1, kRing2);
+
+  for (Vertex v : handle_) field_[v.idx] = 1.0;
+  for (Vertex v : fixed_) field_[v.idx] = 0.0;
+  result_.n_handle = handle_.size();
+  result_.n_free = free_.size();
+  result_.n_fixed = fixed_.size();
+  result_.region.clear();
+  result_.region.insert(result_.region.end(), handle_.begin(), handle_.end());
+  result_.region.insert(result_.region.end(), free_.begin(), free_.end());
+  result_.region.insert(result_.region.end(), fixed_.begin(), fixed_.begin() + ring1);
+}
+
+void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
+  const int n_free = static_cast<int>(free_.size());
+  if (n_free == 0) {
+    result_.field_stats = BiharmonicStats{};
+    return;
+  }
+  for (int i = 0; i < n_free; ++i) index_[free_[i].idx] = i;
+  // Rows: the free vertices and their neighbours (each one's cotan row touches a free column).
+  int n_rows = 0;
+  for (Vertex v : free_) {
+    if (row_index_[v.idx] < 0) row_index_[v.idx] = n_rows++;
+    for (Vertex u : mesh.vertices(v))
+      if (row_index_[u.idx] < 0) row_index_[u.idx] = n_rows++;
+  }
+  system_.clear(n_free, n_rows);
+  auto add_row = [&](Vertex j) {
+    const int r = row_index_[j.idx];
+    const Point& pj = mesh.position(j);
+    double diag = 0, area = 0, g = 0;
+    for (mesh::Halfedge h : mesh.halfedges(j)) {
+      const Vertex u = mesh.to_vertex(h);
+      const Point& pu = mesh.position(u);
+      double c = 0;
+      if (!mesh.is_boundary(h)) {
+        const Point& po = mesh.position(mesh.to_vertex(mesh.next(h)));
+        c += 0.5 * geometry::cotan(pj - po, pu - po);
+        area += glm::length(glm::cross(pu - pj, po - pj)) / 6.0;  // a third of the triangle
+      }
+      const mesh::Halfedge o = mesh.opposite(h);
+      if (!mesh.is_boundary(o)) {
+        const Point& po = mesh.position(mesh.to_vertex(mesh.next(o)));
+        c += 0.5 * geometry::cotan(pj - po, pu - po);
+      }
+      diag -= c;
+      const Category cu = category(u);
+      if (cu == kFree)
+        system_.add(r, index_[u.idx], c);
+      else if (cu == kHandle)
+        g += c;
+    }
+    const Category cj = category(j);
+    if (cj == kFree)
+      system_.add(r, index_[j.idx], diag);
+    else if (cj == kHandle)
+      g += diag;
+    system_.inv_mass[r] = 1.0 / std::max(area, 1e-300);
+    system_.known_rhs[r] = g;
+  };
+  for (Vertex v : free_) {
+    if (row_index_[v.idx] >= 0 && row_index_[v.idx] < n_rows) add_row(v);
+  }
+  for (Vertex v : handle_)
+    if (row_index_[v.idx] >= 0) add_row(v);
+  for (Vertex v : fixed_)
+    if (row_index_[v.idx] >= 0) add_row(v);
+  solver_.solve(system_, solution_, options_.reuse, options_.max_refinement_steps, 1e-6, &row_laplacian_);
+  result_.field_stats = solver_.stats();
+  for (int i = 0; i < n_free; ++i) field_[free_[i].idx] = std::clamp(solution_[i], 0.0, 1.0);
+  auto store = [&](const std::vector<Vertex>& vs) {
+    for (Vertex v : vs) laplacian_[v.idx] = row_index_[v.idx] >= 0 ? row_laplacian_[row_index_[v.idx]] : 0.0;
+  };
+  store(handle_);
+  store(free_);
+  store(fixed_);
+}
+
+void HandleDeformer::recompute_field(const SurfaceMesh& mesh) {
+  if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
+  for (Vertex v : handle_) row_index_[v.idx] = -1;
+  for (Vertex v : free_) row_index_[v.idx] = -1;
+  for (Vertex v : fixed_) row_index_[v.idx] = -1;
+  compute_field(mesh);
+}
+
+void HandleDeformer::compute_region_and_field(const SurfaceMesh& mesh) {
+  if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
+  compute_region(mesh);
+  compute_field(mesh);
+}
+
+double HandleDeformer::midpoint_field(Vertex a, Vertex b, const Point& pa, const Point& pb) const {
+  const Vec3 e = pb - pa;
+  const double w = 0.5 * (field_[a.idx] + field_[b.idx]) - glm::dot(e, e) * (laplacian_[a.idx] + laplacian_[b.idx]) / 32.0;
+  return std::clamp(w, 0.0, 1.0);
+}
+
+size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, double epsilon) {
+  split_edges_.clear();
+  const double eps2 = epsilon * epsilon;
+  for (Vertex v : free_) {
+    const Point& pv = mesh.position(v);
+    const double wv = field_[v.idx];
+    const Point dv = blend(inc, wv, center_, pv);
+    for (mesh::Halfedge h : mesh.halfedges(v)) {
+      const Vertex u = mesh.to_vertex(h);
+      const Category cu = category(u);
+      if (cu == kFree && u.idx < v.idx) continue;  // each free-free edge once
+      if (cu == kOutside || cu == kRing2) continue;
+      const Point& pu = mesh.position(u);
+      const double wu = field_[u.idx];
+      const Point mid_of_deformed = 0.5 * (dv + blend(inc, wu, center_, pu));
+      const Point deformed_mid = blend(inc, midpoint_field(v, u, pv, pu), center_, 0.5 * (pu + pv));
+      const Vec3 dev = deformed_mid - mid_of_deformed;
+      if (glm::dot(dev, dev) > eps2) split_edges_.push_back(mesh.edge(h));
+    }
+  }
+  for (mesh::Edge e : split_edges_) {
+    const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
+    const double w = midpoint_field(a, b, mesh.position(a), mesh.position(b));
+    const Vertex m = mesh.split(e, 0.5 * (mesh.position(a) + mesh.position(b)));
+    grow(mesh.vertices_size());
+    set_category(m, kFree);
+    index_[m.idx] = -1;
+    row_index_[m.idx] = -1;
+    field_[m.idx] = w;
+    laplacian_[m.idx] = 0.5 * (laplacian_[a.idx] + laplacian_[b.idx]);
+    free_.push_back(m);
+    result_.region.push_back(m);
+  }
+  return split_edges_.size();
+}
+
+StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon) {
+  if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
+  auto t = Clock::now();
+  compute_region(mesh);
+  result_.roi_ms = ms_since(t);
+  t = Clock::now();
+  compute_field(mesh);
+  result_.field_ms = ms_since(t);
+
+  const HandleTransform inc = increment(previous_total_, total);
+  t = Clock::now();
+  result_.splits = options_.refine && epsilon > 0 ? refine(mesh, inc, epsilon) : 0;
+  result_.refine_ms = ms_since(t);
+
+  t = Clock::now();
+  for (Vertex v : handle_) mesh.position(v) = blend(inc, 1.0, center_, mesh.position(v));
+  for (Vertex v : free_) mesh.position(v) = blend(inc, field_[v.idx], center_, mesh.position(v));
+  center_ += inc.translation;
+  previous_total_ = total;
+  first_frame_ = false;
+  result_.deform_ms = ms_since(t);
+  return result_;
+}
+
+}  // namespace adasculpt::deform
