@@ -1,0 +1,211 @@
+// Connectivity and position passes of a remeshing iteration: valence-driven edge flips and
+// the paper's area-and-sizing weighted tangential relaxation (equation 6), then projection.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/triangle.h"
+#include "remesh/remesher_impl.h"
+
+namespace adasculpt::remesh {
+
+namespace {
+int target_valence(const SurfaceMesh& m, Vertex v) { return m.is_boundary(v) ? 4 : 6; }
+int sq(int x) { return x * x; }
+}  // namespace
+
+// A flip must not fold the surface: both new triangles keep the orientation of the quad and
+// stay non-degenerate, and the quad must be nearly flat (otherwise the flip changes shape).
+bool Remesher::Impl::flip_geometry_ok(Edge e, bool require_flat) const {
+  Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+  const Point& a = mesh.position(mesh.to_vertex(o));
+  const Point& b = mesh.position(mesh.to_vertex(h));
+  const Point& c = mesh.position(mesh.to_vertex(mesh.next(h)));
+  const Point& d = mesh.position(mesh.to_vertex(mesh.next(o)));
+  Vec3 n1 = glm::cross(b - a, c - a);  // (a, b, c)
+  Vec3 n2 = glm::cross(a - b, d - b);  // (b, a, d)
+  Vec3 m1 = glm::cross(d - a, c - a);  // (a, d, c)
+  Vec3 m2 = glm::cross(b - d, c - d);  // (d, b, c)
+  double l1 = glm::length(n1), l2 = glm::length(n2), k1 = glm::length(m1), k2 = glm::length(m2);
+  double scale = glm::dot(c - d, c - d);
+  if (k1 <= 1e-12 * scale || k2 <= 1e-12 * scale) return false;
+  Vec3 avg = n1 + n2;
+  if (glm::dot(m1, avg) <= 0 || glm::dot(m2, avg) <= 0) return false;
+  if (!require_flat) return true;
+  // The new triangles must agree with each other at least as well as the old ones did.
+  double old_cos = (l1 > 0 && l2 > 0) ? glm::dot(n1, n2) / (l1 * l2) : -1.0;
+  double new_cos = glm::dot(m1, m2) / (k1 * k2);
+  return new_cos >= std::min(old_cos, 0.9) - 1e-12 && new_cos > 0.5;
+}
+
+size_t Remesher::Impl::flip_edges() {
+  valence.resize(mesh.vertices_size());
+  for (Vertex v : scope_vertices)
+    if (!mesh.is_deleted(v)) valence[v.idx] = static_cast<int>(mesh.valence(v));
+  gather_scope_edges();
+  size_t flips = 0;
+  for (Edge e : scope_edges) {
+    if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
+    Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+    Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
+    Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
+    // All four corners must be in the iteration's scope; held border vertices may gain or
+    // lose an edge, outside vertices may not.
+    if (scope[c] == kOutside || scope[d] == kOutside) continue;
+    int va = valence[a.idx], vb = valence[b.idx], vc = valence[c.idx], vd = valence[d.idx];
+    int ta = target_valence(mesh, a), tb = target_valence(mesh, b), tc = target_valence(mesh, c),
+        td = target_valence(mesh, d);
+    int before = sq(va - ta) + sq(vb - tb) + sq(vc - tc) + sq(vd - td);
+    int after = sq(va - 1 - ta) + sq(vb - 1 - tb) + sq(vc + 1 - tc) + sq(vd + 1 - td);
+    if (after >= before) continue;
+    if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
+    mesh.flip(e);
+    --valence[a.idx];
+    --valence[b.idx];
+    ++valence[c.idx];
+    ++valence[d.idx];
+    ++flips;
+  }
+  return flips;
+}
+
+// Flips that raise the smaller of the two triangles' minimum angles, for pairs containing a
+// poor triangle: the valence flips leave a few of these where the sizing changes quickly.
+size_t Remesher::Impl::flip_for_angles(double poor_angle) {
+  gather_scope_edges();
+  size_t flips = 0;
+  for (Edge e : scope_edges) {
+    if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
+    Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+    Vertex va = mesh.to_vertex(o), vb = mesh.to_vertex(h);
+    Vertex vc = mesh.to_vertex(mesh.next(h)), vd = mesh.to_vertex(mesh.next(o));
+    if (scope[vc] == kOutside || scope[vd] == kOutside) continue;
+    const Point &a = mesh.position(va), &b = mesh.position(vb), &c = mesh.position(vc), &d = mesh.position(vd);
+    double t1[3], t2[3], u1[3], u2[3];
+    geometry::triangle_angles(a, b, c, t1);
+    geometry::triangle_angles(b, a, d, t2);
+    double before = std::min({t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]});
+    if (before >= poor_angle) continue;
+    // Delaunay test: the angles opposite the edge sum to more than pi.
+    if (t1[2] + t2[2] <= M_PI) continue;
+    geometry::triangle_angles(a, d, c, u1);
+    geometry::triangle_angles(d, b, c, u2);
+    double after = std::min({u1[0], u1[1], u1[2], u2[0], u2[1], u2[2]});
+    if (after <= before) continue;
+    if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
+    mesh.flip(e);
+    ++flips;
+  }
+  return flips;
+}
+
+void Remesher::Impl::relax_vertices() {
+  new_positions.resize(scope_vertices.size());
+  for (size_t i = 0; i < scope_vertices.size(); ++i) {
+    Vertex v = scope_vertices[i];
+    if (mesh.is_deleted(v)) continue;
+    const Point p = mesh.position(v);
+    new_positions[i] = p;
+    if (!movable(v)) continue;
+    if (vclass[v] == kFeatureLine) {
+      // Along the feature line: the two feature edges' midpoints weighted by length x sizing.
+      Vertex ends[2];
+      int n = 0;
+      for (Halfedge h : mesh.halfedges(v))
+        if (is_feature(mesh.edge(h)) && n < 2) ends[n++] = mesh.to_vertex(h);
+      if (n != 2) continue;
+      const Point& pa = mesh.position(ends[0]);
+      const Point& pb = mesh.position(ends[1]);
+      double wa = glm::length(pa - p) * 0.5 * (sizing[v] + sizing[ends[0]]);
+      double wb = glm::length(pb - p) * 0.5 * (sizing[v] + sizing[ends[1]]);
+      if (wa + wb <= 0) continue;
+      Point c = (wa * 0.5 * (p + pa) + wb * 0.5 * (p + pb)) / (wa + wb);
+      Vec3 t = pb - pa;
+      double tl = glm::dot(t, t);
+      if (tl <= 0) continue;
+      new_positions[i] = p + t * (glm::dot(c - p, t) / tl);
+      continue;
+    }
+    // Equation 6: triangle barycentres weighted by area x sizing at the barycentre.
+    Vec3 normal(0.0);
+    Point c(0.0);
+    double weight = 0;
+    for (Halfedge h : mesh.halfedges(v)) {
+      if (mesh.is_boundary(h)) continue;
+      Vertex w1 = mesh.to_vertex(h), w2 = mesh.to_vertex(mesh.next(h));
+      const Point& p1 = mesh.position(w1);
+      const Point& p2 = mesh.position(w2);
+      Vec3 n = glm::cross(p1 - p, p2 - p);
+      double area = 0.5 * glm::length(n);
+      double size = (sizing[v] + sizing[w1] + sizing[w2]) / 3.0;
+      double w = area * size;
+      normal += n;
+      c += w * (p + p1 + p2) / 3.0;
+      weight += w;
+    }
+    double nl = glm::length(normal);
+    if (weight <= 0 || nl <= 0) continue;
+    normal /= nl;
+    Vec3 u = c / weight - p;
+    new_positions[i] = p + (u - normal * glm::dot(normal, u));
+  }
+  for (size_t i = 0; i < scope_vertices.size(); ++i) {
+    Vertex v = scope_vertices[i];
+    if (!mesh.is_deleted(v) && movable(v)) mesh.position(v) = new_positions[i];
+  }
+}
+
+void Remesher::Impl::project_vertices() {
+  for (Vertex v : scope_vertices)
+    if (!mesh.is_deleted(v) && movable(v)) project(v);
+}
+
+// Removes zero-area and needle triangles left by the input: collapse their shortest edge
+// when it is tiny, otherwise flip their longest edge (a "cap" has no short edge).
+size_t Remesher::Impl::fix_degenerate_faces() {
+  constexpr double kDegenerateAngle = 1.0 * M_PI / 180.0;
+  size_t fixed = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    size_t fixed_this_pass = 0;
+    for (mesh::Face f : mesh.faces()) {
+      Halfedge hs[3] = {mesh.halfedge(f), mesh.next(mesh.halfedge(f)), mesh.prev(mesh.halfedge(f))};
+      Point p[3];
+      for (int i = 0; i < 3; ++i) p[i] = mesh.position(mesh.to_vertex(hs[i]));
+      double ang[3];
+      geometry::triangle_angles(p[0], p[1], p[2], ang);
+      if (std::min({ang[0], ang[1], ang[2]}) >= kDegenerateAngle) continue;
+      // Edge lengths: hs[i] runs from p[(i+2)%3] to p[i].
+      double len[3];
+      for (int i = 0; i < 3; ++i) len[i] = glm::length(p[i] - p[(i + 2) % 3]);
+      int shortest = int(std::min_element(len, len + 3) - len);
+      int longest = int(std::max_element(len, len + 3) - len);
+      bool done = false;
+      if (len[shortest] < 0.2 * len[longest]) {
+        for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
+          if (collapse_allowed(h)) {
+            Halfedge o = mesh.opposite(h);
+            if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
+            if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
+            mesh.collapse(h);
+            done = true;
+            break;
+          }
+      }
+      if (!done) {
+        Edge e = mesh.edge(hs[longest]);
+        if (!is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && mesh.is_flip_ok(e) &&
+            flip_geometry_ok(e, false)) {
+          mesh.flip(e);
+          done = true;
+        }
+      }
+      fixed_this_pass += done;
+    }
+    fixed += fixed_this_pass;
+    if (!fixed_this_pass) break;
+  }
+  return fixed;
+}
+
+}  // namespace adasculpt::remesh

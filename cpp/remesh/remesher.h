@@ -1,0 +1,76 @@
+#pragma once
+// Curvature-adaptive isotropic remeshing (Dunyach et al. 2013, sections 2-3) and the uniform
+// remeshing of Botsch & Kobbelt 2004 it extends.
+//
+// One iteration = split long edges, collapse short ones, flip towards valence 6 (4 on the
+// boundary), tangential relaxation weighted by area x sizing (paper eq. 6), projection back
+// onto the reference surface. Target lengths come from the sizing field
+// L = sqrt(6 eps / kappa - 3 eps^2) clamped to [min_length, max_length].
+//
+// A Remesher keeps its reference surface (AABB tree, curvature, sizing) alive between calls so
+// that interactive use pays only for what changed; remesh() is the one-shot batch entry.
+#include <memory>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::remesh {
+
+using mesh::Face;
+using mesh::SurfaceMesh;
+using mesh::Vertex;
+
+struct RemeshOptions {
+  bool adaptive = true;
+  double epsilon = 0.0;        // approximation tolerance (absolute length), adaptive mode
+  double min_length = 0.0;     // sizing clamp (absolute), adaptive mode
+  double max_length = 0.0;
+  double target_length = 0.0;  // uniform mode
+  int iterations = 5;
+  bool projection = true;        // back-project onto the reference surface
+  double feature_angle_deg = 0;  // > 0: edges with a larger dihedral angle are kept sharp
+};
+
+// Defaults of the command line, as fractions of the bounding-box diagonal: epsilon 0.05%,
+// min 0.2%, max 5%, uniform length 1%.
+RemeshOptions default_options_for(const SurfaceMesh& mesh);
+double bounding_box_diagonal(const SurfaceMesh& mesh);
+
+// Throws std::invalid_argument with a message a user can act on (epsilon <= 0, min > max...).
+void check_options(const RemeshOptions& options);
+
+struct IterationStats {
+  size_t splits = 0, collapses = 0, flips = 0;
+};
+
+class Remesher {
+ public:
+  // The mesh's current surface becomes the reference for projection and sizing.
+  // Marks feature edges when options.feature_angle_deg > 0.
+  Remesher(SurfaceMesh& mesh, const RemeshOptions& options);
+  ~Remesher();
+  Remesher(const Remesher&) = delete;
+  Remesher& operator=(const Remesher&) = delete;
+
+  // One iteration over the whole mesh (projection as in the options).
+  IterationStats iterate();
+  // One iteration restricted to the given vertices: only edges with both ends in the set are
+  // touched and vertices on the border of the set stay where they are. No projection; the
+  // curvature and sizing are taken from the current surface (the sculpting frame).
+  // The vertex list is updated in place: removed vertices leave, new vertices join.
+  IterationStats iterate_region(std::vector<Vertex>& region);
+  // The mesh changed outside the remesher's control (e.g. deformation or a new load):
+  // the reference surface is rebuilt from the current mesh on the next whole-mesh iteration.
+  void reset_reference();
+  const RemeshOptions& options() const;
+  void set_options(const RemeshOptions& options);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Batch remeshing: options.iterations iterations against the input surface.
+void remesh(SurfaceMesh& mesh, const RemeshOptions& options);
+
+}  // namespace adasculpt::remesh

@@ -1,0 +1,93 @@
+#pragma once
+// Internal state of a Remesher, shared by the pass files (split/collapse, flip, relaxation,
+// reference). Not part of the public API.
+#include <cstdint>
+#include <vector>
+
+#include "geometry/aabb_tree.h"
+#include "remesh/remesher.h"
+
+namespace adasculpt::remesh {
+
+using mesh::Edge;
+using mesh::EdgeProperty;
+using mesh::Halfedge;
+using mesh::VertexProperty;
+
+// How a vertex may move.
+enum VertexClass : std::uint8_t {
+  kFree = 0,        // tangential relaxation
+  kFeatureLine = 1, // exactly two feature/boundary edges: slides along them
+  kCorner = 2,      // any other number of feature edges: never moves, never removed
+};
+
+// What the current iteration may do to a vertex.
+enum Scope : std::uint8_t {
+  kOutside = 0,  // untouched
+  kActive = 1,   // may move, be removed, get new edges
+  kHeld = 2,     // on the border of a region: keeps its position and stays
+};
+
+struct Remesher::Impl {
+  Impl(SurfaceMesh& m, const RemeshOptions& o);
+
+  SurfaceMesh& mesh;
+  RemeshOptions opt;
+
+  // Reference surface: a copy of the mesh when the remesher was made (or last reset), with
+  // its sizing per reference point, for projection and for the sizing of new vertices.
+  geometry::TriangleTree tree;
+  std::vector<double> ref_sizing;  // per tree point
+  bool has_reference = false;
+  bool reference_stale = false;
+
+  // Per-element state kept on the mesh so it follows splits, collapses and compaction.
+  VertexProperty<double> sizing;
+  VertexProperty<std::uint8_t> vclass;
+  VertexProperty<std::uint8_t> scope;
+  VertexProperty<std::uint32_t> ref_hint;  // last reference triangle a vertex projected to
+  EdgeProperty<std::uint8_t> feature;      // feature or boundary edge
+
+  // Scratch buffers, reused so iterations do not allocate once warmed up.
+  std::vector<Vertex> scope_vertices;
+  std::vector<Edge> scope_edges;
+  std::vector<std::pair<double, Edge>> candidates;
+  std::vector<int> valence;
+  std::vector<Point> new_positions;
+  std::vector<double> kappa;
+
+  // ---- set-up (reference.cpp)
+  void build_reference();
+  void mark_features();
+  void classify_vertex(Vertex v);
+  void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
+  double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
+  void project(Vertex v);
+
+  // ---- passes (split_collapse.cpp, flip_relax.cpp)
+  void gather_scope_edges();
+  size_t split_long_edges();
+  size_t collapse_short_edges();
+  size_t flip_edges();
+  size_t flip_for_angles(double poor_angle);
+  void relax_vertices();
+  void project_vertices();
+  size_t fix_degenerate_faces();
+
+  // ---- helpers
+  double target_length(Edge e) const {
+    return std::min(sizing[mesh.vertex(e, 0)], sizing[mesh.vertex(e, 1)]);
+  }
+  bool in_scope(Edge e) const {
+    return scope[mesh.vertex(e, 0)] != kOutside && scope[mesh.vertex(e, 1)] != kOutside;
+  }
+  bool movable(Vertex v) const { return scope[v] == kActive && vclass[v] != kCorner; }
+  bool is_feature(Edge e) const { return feature[e] != 0; }
+  bool collapse_allowed(Halfedge h) const;
+  double collapse_quality(Halfedge h) const;
+  bool flip_geometry_ok(Edge e, bool require_flat) const;
+  Vertex split_edge(Edge e, const Point& p);
+  IterationStats run_iteration(bool project);
+};
+
+}  // namespace adasculpt::remesh

@@ -1,0 +1,40 @@
+#include "remesh/sizing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+#include <glm/geometric.hpp>
+
+namespace adasculpt::remesh {
+
+double sizing_from_curvature(double kappa, double epsilon, double min_length, double max_length) {
+  if (!(kappa > 0.0)) return max_length;
+  double squared = 6.0 * epsilon / kappa - 3.0 * epsilon * epsilon;
+  if (squared <= 0.0) return min_length;
+  return std::clamp(std::sqrt(squared), min_length, max_length);
+}
+
+void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& vertices,
+                            mesh::VertexProperty<double>& sizing, double gradation) {
+  // Dijkstra from the smallest values outwards: each vertex is finalised with the smallest
+  // bound any neighbour imposes.
+  using Item = std::pair<double, mesh::Index>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (mesh::Vertex v : vertices) queue.push({sizing[v], v.idx});
+  while (!queue.empty()) {
+    auto [value, idx] = queue.top();
+    queue.pop();
+    mesh::Vertex v(idx);
+    if (value > sizing[v]) continue;  // stale entry
+    for (mesh::Vertex w : mesh.vertices(v)) {
+      double bound = value + gradation * glm::length(mesh.position(w) - mesh.position(v));
+      if (bound < sizing[w]) {
+        sizing[w] = bound;
+        queue.push({bound, w.idx});
+      }
+    }
+  }
+}
+
+}  // namespace adasculpt::remesh

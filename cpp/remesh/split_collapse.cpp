@@ -1,0 +1,183 @@
+// Edge-length passes of a remeshing iteration: split edges longer than 4/3 L, collapse edges
+// shorter than 4/5 L (Botsch & Kobbelt 2004 thresholds, L from the sizing field).
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/triangle.h"
+#include "remesh/remesher_impl.h"
+
+namespace adasculpt::remesh {
+
+namespace {
+constexpr double kSplitFactor = 4.0 / 3.0;
+constexpr double kCollapseFactor = 4.0 / 5.0;
+constexpr int kMaxSplitPasses = 10;
+
+double squared_length(const SurfaceMesh& m, Edge e) {
+  Vec3 d = m.position(m.vertex(e, 0)) - m.position(m.vertex(e, 1));
+  return glm::dot(d, d);
+}
+
+double min_angle(const Point& a, const Point& b, const Point& c) {
+  double ang[3];
+  geometry::triangle_angles(a, b, c, ang);
+  return std::min({ang[0], ang[1], ang[2]});
+}
+}  // namespace
+
+void Remesher::Impl::gather_scope_edges() {
+  scope_edges.clear();
+  for (Vertex v : scope_vertices) {
+    if (mesh.is_deleted(v)) continue;
+    for (Halfedge h : mesh.halfedges(v)) {
+      Vertex w = mesh.to_vertex(h);
+      // Each edge once: from its lower-index end, or from v when w is outside the scope.
+      if (scope[w] == kOutside) continue;
+      if (v.idx < w.idx) scope_edges.push_back(mesh.edge(h));
+    }
+  }
+}
+
+Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
+  Vertex a = mesh.vertex(e, 1), b = mesh.vertex(e, 0);  // halfedge(e,0) runs a -> b
+  const double size = 0.5 * (sizing[a] + sizing[b]);
+  const std::uint8_t was_feature = feature[e];
+  const std::uint32_t hint = ref_hint[a];
+  Vertex v = mesh.split(e, p);
+  // The old edge now runs a -> v; the new edge v -> b inherits its feature flag.
+  Halfedge vb = mesh.find_halfedge(v, b);
+  feature[mesh.edge(vb)] = was_feature;
+  vclass[v] = was_feature ? kFeatureLine : kFree;
+  scope[v] = kActive;
+  ref_hint[v] = hint;
+  sizing[v] = size;
+  if (has_reference && !reference_stale) {
+    std::uint32_t h = hint;
+    sizing[v] = reference_sizing_at(p, &h);
+    ref_hint[v] = h;
+  }
+  scope_vertices.push_back(v);
+  return v;
+}
+
+size_t Remesher::Impl::split_long_edges() {
+  size_t splits = 0;
+  for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
+    gather_scope_edges();
+    candidates.clear();
+    for (Edge e : scope_edges) {
+      double limit = kSplitFactor * target_length(e);
+      double l2 = squared_length(mesh, e);
+      if (l2 > limit * limit) candidates.push_back({l2 / (limit * limit), e});
+    }
+    if (candidates.empty()) break;
+    // Longest first: splitting them first gives the better-shaped fans.
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
+    for (const auto& c : candidates) {
+      Edge e = c.second;
+      Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
+      split_edge(e, mid);
+      ++splits;
+    }
+  }
+  return splits;
+}
+
+// Topological and geometric admissibility of collapsing h: from_vertex(h) -> to_vertex(h).
+bool Remesher::Impl::collapse_allowed(Halfedge h) const {
+  Halfedge o = mesh.opposite(h);
+  Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  if (scope[v0] != kActive || scope[v1] == kOutside) return false;
+  if (vclass[v0] == kCorner) return false;
+  Edge e = mesh.edge(h);
+  if (vclass[v0] == kFeatureLine) {
+    // A feature vertex may only slide along its own feature line.
+    if (!is_feature(e)) return false;
+  } else if (is_feature(e)) {
+    return false;  // a free vertex cannot lie on a feature edge; be safe
+  }
+  // A removed triangle whose two other edges are both features would merge feature lines.
+  if (!mesh.is_boundary(h) && is_feature(mesh.edge(mesh.next(h))) && is_feature(mesh.edge(mesh.prev(h))))
+    return false;
+  if (!mesh.is_boundary(o) && is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o))))
+    return false;
+  if (!mesh.is_collapse_ok(h)) return false;
+
+  const Point& p0 = mesh.position(v0);
+  const Point& p1 = mesh.position(v1);
+  Vertex x = mesh.is_boundary(h) ? Vertex() : mesh.to_vertex(mesh.next(h));
+  Vertex y = mesh.is_boundary(o) ? Vertex() : mesh.to_vertex(mesh.next(o));
+  for (Halfedge out : mesh.halfedges(v0)) {
+    Vertex w = mesh.to_vertex(out);
+    if (w == v1) continue;
+    // No new edge longer than the split threshold: the collapse would be undone next time.
+    double limit = kSplitFactor * std::min(sizing[v1], sizing[w]);
+    Vec3 d = mesh.position(w) - p1;
+    if (w != x && w != y && glm::dot(d, d) > limit * limit) return false;
+    // Each surviving triangle (v0, w, w2) becomes (v1, w, w2): no flip, no degeneracy.
+    if (mesh.is_boundary(out)) continue;
+    Vertex w2 = mesh.to_vertex(mesh.next(out));
+    if (w2 == v1) continue;
+    const Point& pw = mesh.position(w);
+    const Point& pw2 = mesh.position(w2);
+    Vec3 n_old = glm::cross(pw - p0, pw2 - p0);
+    Vec3 n_new = glm::cross(pw - p1, pw2 - p1);
+    double len_new = glm::length(n_new), len_old = glm::length(n_old);
+    if (len_new <= 1e-14 * glm::dot(pw - p1, pw - p1)) return false;
+    // Old degenerate triangles have no orientation to keep; otherwise stay within 60 degrees.
+    if (len_old > 0 && glm::dot(n_old, n_new) < 0.5 * len_old * len_new) return false;
+  }
+  return true;
+}
+
+// The smallest angle among the triangles that collapsing h would reshape.
+double Remesher::Impl::collapse_quality(Halfedge h) const {
+  Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  const Point& p1 = mesh.position(v1);
+  double worst = M_PI;
+  for (Halfedge out : mesh.halfedges(v0)) {
+    if (mesh.is_boundary(out)) continue;
+    Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
+    if (w == v1 || w2 == v1) continue;
+    worst = std::min(worst, min_angle(p1, mesh.position(w), mesh.position(w2)));
+  }
+  return worst;
+}
+
+size_t Remesher::Impl::collapse_short_edges() {
+  gather_scope_edges();
+  candidates.clear();
+  for (Edge e : scope_edges) {
+    double limit = kCollapseFactor * target_length(e);
+    double l2 = squared_length(mesh, e);
+    if (l2 < limit * limit) candidates.push_back({l2 / (limit * limit), e});
+  }
+  // Shortest first.
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second < y.second); });
+  size_t collapses = 0;
+  for (const auto& c : candidates) {
+    Edge e = c.second;
+    if (mesh.is_deleted(e)) continue;
+    double limit = kCollapseFactor * target_length(e);
+    if (squared_length(mesh, e) >= limit * limit) continue;  // neighbours changed it
+    Halfedge h0 = mesh.halfedge(e, 0), h1 = mesh.halfedge(e, 1);
+    bool ok0 = collapse_allowed(h0), ok1 = collapse_allowed(h1);
+    if (!ok0 && !ok1) continue;
+    Halfedge h = ok0 ? h0 : h1;
+    if (ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0)) h = h1;
+    // The mesh keeps the edges of prev(h) and next(opposite(h)); carry feature flags over
+    // from the edges that disappear with the two triangles.
+    Halfedge o = mesh.opposite(h);
+    if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
+    if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
+    mesh.collapse(h);
+    ++collapses;
+  }
+  return collapses;
+}
+
+}  // namespace adasculpt::remesh
