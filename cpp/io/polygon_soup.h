@@ -1,0 +1,19 @@
+#pragma once
+// The in-memory result of reading any mesh file: raw positions and triangles,
+// with no connectivity built yet. Readers validate indices and coordinates, so a
+// PolygonSoup coming out of read_soup() is safe to hand to the mesh builder.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace adasculpt::io {
+
+struct PolygonSoup {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<uint32_t, 3>> triangles;  // polygons already fan-triangulated
+  std::vector<std::string> warnings;               // e.g. "welded 1234 coincident STL vertices"
+};
+
+}  // namespace adasculpt::io
