@@ -1,0 +1,333 @@
+// embind bindings: Module.Session, a thin shell over sculpt::Session plus the RenderBuffers the
+// page draws from. Converts typed arrays, JSON strings and small objects; no logic of its own.
+//
+// Errors: a C++ exception is caught here, its message stored in a static slot, and the method
+// returns a neutral value; a JS wrapper installed on Module.Session.prototype (on first
+// construction, when every type is registered) sees the flag and throws `new Error(message)`.
+// Throwing a JS exception from inside C++ frames would skip their destructors (leaks); this way
+// every C++ frame has returned normally before JS throws, and no extra wasm call is needed.
+//
+// One wasm call per frame: grabDrag() does the whole frame (deform, remesh, render-buffer update)
+// and returns the changes with pointers into wasm memory, so the page builds its typed-array views
+// itself (views must be rebuilt after every call anyway: memory growth detaches them).
+#include <emscripten/bind.h>
+#include <emscripten/em_js.h>
+#include <emscripten/emscripten.h>
+#include <emscripten/val.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "geometry/quality.h"
+#include "mesh/build_from_triangles.h"
+#include "sculpt/render_buffers.h"
+#include "sculpt/session.h"
+
+// Wraps every method of Module.Session so that a recorded C++ error becomes a thrown Error.
+// clang-format off
+EM_JS(void, install_error_wrappers_js, (int* flag_address, const char* message), {
+  var proto = Module['Session'].prototype;
+  if (proto.__adasculptErrors) return;
+  proto.__adasculptErrors = true;
+  var flag = flag_address >> 2;
+  Object.getOwnPropertyNames(proto).forEach(function (name) {
+    var raw = proto[name];
+    if (name === 'constructor' || typeof raw !== 'function') return;
+    proto[name] = function () {
+      var result = raw.apply(this, arguments);
+      if (HEAP32[flag]) {
+        HEAP32[flag] = 0;
+        throw new Error(UTF8ToString(message));
+      }
+      return result;
+    };
+  });
+});
+// clang-format on
+
+namespace adasculpt::bindings {
+
+using emscripten::val;
+
+namespace {
+
+struct ErrorSlot {
+  int flag = 0;
+  char message[4096] = {0};
+};
+ErrorSlot g_error;
+
+void set_error(const char* msg) {
+  std::snprintf(g_error.message, sizeof g_error.message, "%s", msg);
+  g_error.flag = 1;
+}
+
+// Runs f; on a C++ exception records its message and returns `fallback`.
+template <class R, class F>
+R guarded(R fallback, F&& f) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    set_error(e.what());
+  } catch (...) {
+    set_error("unknown C++ exception");
+  }
+  return fallback;
+}
+template <class F>
+void guarded_void(F&& f) {
+  guarded(0, [&] {
+    f();
+    return 0;
+  });
+}
+
+// Copies a Uint8Array/ArrayBuffer/typed array `src` into a std::vector of T (converting element type).
+template <class T>
+std::vector<T> copy_typed_array(const val& src, const char* view_type) {
+  val arr = src.instanceof(val::global("ArrayBuffer")) ? val::global(view_type).new_(src) : src;
+  size_t n = arr["length"].as<size_t>();
+  std::vector<T> out(n);
+  // The view is taken after the allocation, which may have grown (and detached) wasm memory.
+  val(emscripten::typed_memory_view(n, out.data())).call<void>("set", arr);
+  return out;
+}
+
+io::Format parse_format(std::string f) {
+  std::transform(f.begin(), f.end(), f.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (f == "obj") return io::Format::OBJ;
+  if (f == "stl") return io::Format::STL;
+  if (f == "ply") return io::Format::PLY;
+  if (f == "off") return io::Format::OFF;
+  throw std::invalid_argument("unknown export format '" + f + "' (use obj, stl, ply or off)");
+}
+
+}  // namespace
+
+class SessionHandle {
+ public:
+  SessionHandle() { install_error_wrappers_js(&g_error.flag, g_error.message); }
+
+  bool has_mesh() const { return session_.has_mesh(); }
+
+  void load_bytes(const val& bytes, const std::string& name_hint) {
+    guarded_void([&] {
+      std::vector<std::uint8_t> data = copy_typed_array<std::uint8_t>(bytes, "Uint8Array");
+      session_.load_bytes(data.data(), data.size(), name_hint);
+      sync(true);
+    });
+  }
+
+  void load_arrays(const val& positions, const val& indices) {
+    guarded_void([&] {
+      std::vector<double> p = copy_typed_array<double>(positions, "Float64Array");
+      std::vector<std::uint32_t> t = copy_typed_array<std::uint32_t>(indices, "Uint32Array");
+      if (p.size() % 3 != 0) throw std::invalid_argument("positions: length must be a multiple of 3");
+      if (t.size() % 3 != 0) throw std::invalid_argument("indices: length must be a multiple of 3");
+      std::vector<std::array<double, 3>> points(p.size() / 3);
+      std::vector<std::array<std::uint32_t, 3>> tris(t.size() / 3);
+      std::copy(p.begin(), p.end(), points.empty() ? nullptr : points[0].data());
+      std::copy(t.begin(), t.end(), tris.empty() ? nullptr : tris[0].data());
+      session_.load(mesh::build_from_triangles(points, tris));
+      sync(true);
+    });
+  }
+
+  void set_settings(const std::string& json) {
+    guarded_void([&] { session_.set_settings(nlohmann::json::parse(json)); });
+  }
+  std::string settings() const {
+    return guarded(std::string(), [&] { return session_.settings().dump(); });
+  }
+
+  val pick(double ox, double oy, double oz, double dx, double dy, double dz) const {
+    return guarded(val::null(), [&] {
+      Point hit(0.0);
+      bool ok = session_.has_mesh() && session_.pick(Point(ox, oy, oz), Vec3(dx, dy, dz), &hit);
+      val r = val::object();
+      r.set("hit", ok);
+      r.set("x", hit.x);
+      r.set("y", hit.y);
+      r.set("z", hit.z);
+      return r;
+    });
+  }
+
+  void grab_begin(double cx, double cy, double cz, double handle_radius, double roi_radius) {
+    guarded_void([&] {
+      session_.grab_begin(Point(cx, cy, cz), handle_radius, roi_radius);
+      sync(false);
+    });
+  }
+
+  // The whole frame; returns changes() so the page needs no second call.
+  val grab_drag(double tx, double ty, double tz, double ax, double ay, double az, double degrees, double scale) {
+    return guarded(val::null(), [&] {
+      deform::HandleTransform t;
+      t.translation = glm::dvec3(tx, ty, tz);
+      glm::dvec3 axis(ax, ay, az);
+      double len = glm::length(axis);
+      if (degrees != 0.0 && len > 0.0) t.rotation = glm::angleAxis(glm::radians(degrees), axis / len);
+      t.scale = scale;
+      session_.grab_drag(t);
+      sync(false);
+      return changes();
+    });
+  }
+
+  void grab_end() {
+    guarded_void([&] {
+      session_.grab_end();
+      sync(true);  // grab_end compacts the mesh: every slot may have moved
+    });
+  }
+  bool grabbing() const { return session_.grabbing(); }
+
+  void remesh(int iterations) {
+    guarded_void([&] {
+      session_.remesh(iterations);
+      sync(true);
+    });
+  }
+  bool undo() {
+    return guarded(false, [&] {
+      bool ok = session_.undo();
+      sync(true);
+      return ok;
+    });
+  }
+  bool redo() {
+    return guarded(false, [&] {
+      bool ok = session_.redo();
+      sync(true);
+      return ok;
+    });
+  }
+  bool can_undo() const { return session_.can_undo(); }
+  bool can_redo() const { return session_.can_redo(); }
+
+  std::string replay(const std::string& json) {
+    return guarded(std::string(), [&] {
+      std::string out = session_.replay(nlohmann::json::parse(json)).dump();
+      sync(true);
+      return out;
+    });
+  }
+
+  // Quality of the whole mesh (O(n): not for every frame) and the last frame's timings.
+  std::string stats() const {
+    return guarded(std::string(), [&] {
+      nlohmann::json j = nlohmann::json::object();
+      if (session_.has_mesh()) j = geometry::to_json(session_.quality());
+      const sculpt::FrameTimings& t = session_.last_frame();
+      j["last_frame"] = {{"roi_ms", t.roi_ms},       {"field_ms", t.field_ms},   {"refine_ms", t.refine_ms},
+                         {"deform_ms", t.deform_ms}, {"remesh_ms", t.remesh_ms}, {"total_ms", t.total_ms}};
+      j["can_undo"] = session_.can_undo();
+      j["can_redo"] = session_.can_redo();
+      return j.dump();
+    });
+  }
+
+  val export_mesh(const std::string& format) const {
+    return guarded(val::null(), [&] {
+      std::vector<std::uint8_t> bytes = session_.export_bytes(parse_format(format));
+      return val(emscripten::typed_memory_view(bytes.size(), bytes.data())).call<val>("slice");
+    });
+  }
+
+  val positions() const { return float_view(buffers_.positions(), buffers_.vertex_count()); }
+  val normals() const { return float_view(buffers_.normals(), buffers_.vertex_count()); }
+  val indices() const {
+    return val(emscripten::typed_memory_view(3 * size_t(buffers_.face_count()), buffers_.indices()));
+  }
+
+  // The render changes accumulated since the last changes() (or grabDrag()), plus where the
+  // buffers are (byte addresses into wasm memory) and the last frame's core timings.
+  val changes() {
+    sculpt::RenderChanges c = buffers_.take_pending();
+    val r = val::object();
+    r.set("reallocated", c.reallocated);
+    r.set("indicesChanged", c.indices_changed);
+    r.set("vertexBegin", c.vertex_begin);
+    r.set("vertexEnd", c.vertex_end);
+    r.set("faceBegin", c.face_begin);
+    r.set("faceEnd", c.face_end);
+    r.set("vertexCount", c.vertex_count);
+    r.set("faceCount", c.face_count);
+    r.set("vertices", double(session_.has_mesh() ? session_.mesh().n_vertices() : 0));
+    r.set("faces", double(session_.has_mesh() ? session_.mesh().n_faces() : 0));
+    r.set("vertexCapacity", double(buffers_.vertex_capacity()));
+    r.set("faceCapacity", double(buffers_.face_capacity()));
+    r.set("positionsPtr", reinterpret_cast<std::uintptr_t>(buffers_.positions()));
+    r.set("normalsPtr", reinterpret_cast<std::uintptr_t>(buffers_.normals()));
+    r.set("indicesPtr", reinterpret_cast<std::uintptr_t>(buffers_.indices()));
+    const sculpt::FrameTimings& t = session_.last_frame();
+    val ms = val::object();
+    ms.set("roi", t.roi_ms);
+    ms.set("field", t.field_ms);
+    ms.set("refine", t.refine_ms);
+    ms.set("deform", t.deform_ms);
+    ms.set("remesh", t.remesh_ms);
+    ms.set("total", t.total_ms);
+    r.set("timings", ms);
+    return r;
+  }
+
+ private:
+  static val float_view(const float* p, std::uint32_t vertices) {
+    return val(emscripten::typed_memory_view(3 * size_t(vertices), p));
+  }
+
+  // Brings the render buffers up to date with what the session changed.
+  void sync(bool everything) {
+    if (!session_.has_mesh()) return;
+    const sculpt::ChangeSet& c = session_.changes();
+    if (everything) {
+      buffers_.rebuild(session_.mesh());
+    } else {
+      buffers_.update(session_.mesh(), c);
+    }
+    session_.clear_changes();
+  }
+
+  sculpt::Session session_;
+  sculpt::RenderBuffers buffers_;
+};
+
+EMSCRIPTEN_BINDINGS(adasculpt) {
+  emscripten::class_<SessionHandle>("Session")
+      .constructor<>()
+      .function("hasMesh", &SessionHandle::has_mesh)
+      .function("loadBytes", &SessionHandle::load_bytes)
+      .function("loadArrays", &SessionHandle::load_arrays)
+      .function("setSettings", &SessionHandle::set_settings)
+      .function("settings", &SessionHandle::settings)
+      .function("pick", &SessionHandle::pick)
+      .function("grabBegin", &SessionHandle::grab_begin)
+      .function("grabDrag", &SessionHandle::grab_drag)
+      .function("grabEnd", &SessionHandle::grab_end)
+      .function("grabbing", &SessionHandle::grabbing)
+      .function("remesh", &SessionHandle::remesh)
+      .function("undo", &SessionHandle::undo)
+      .function("redo", &SessionHandle::redo)
+      .function("canUndo", &SessionHandle::can_undo)
+      .function("canRedo", &SessionHandle::can_redo)
+      .function("replay", &SessionHandle::replay)
+      .function("stats", &SessionHandle::stats)
+      .function("exportMesh", &SessionHandle::export_mesh)
+      .function("positions", &SessionHandle::positions)
+      .function("normals", &SessionHandle::normals)
+      .function("indices", &SessionHandle::indices)
+      .function("changes", &SessionHandle::changes);
+}
+
+}  // namespace adasculpt::bindings

@@ -1,0 +1,379 @@
+// createSculptApp(container, options): the whole sculpting app inside one element, as an ES module
+// entry for host pages. Returns the page API (also window.app on the main page):
+//   load(source, format?)  URL | File/Blob | ArrayBuffer | typed array  -> Promise<{vertices, faces}>
+//   setParams({epsilon, minLength, maxLength, features})  numbers are absolute, "0.1%" strings relative
+//   grab.begin({center, handleRadius?, roiRadius?}), grab.drag({translate, rotate: {axis, degrees}, scale}),
+//   grab.end()   (drag takes the total transform since begin)
+//   remesh({iterations})  -> Promise (one iteration per animation frame; each iteration is one undo step)
+//   undo(), redo()  -> boolean;  replay(sessionJson) -> Promise<report>;  stats();  export(format) -> Promise<ArrayBuffer>
+//   dispose()  frees the wasm instance, GPU resources, DOM and every listener.
+// options: model (URL of the first model, null for none), wasmUrl (adasculpt.js), ui (panel and
+// overlays, default true), keyboard ('global': shortcuts on window; default: when the app has focus).
+import { instantiateCore } from './wasm-module.js';
+import { createViewer } from './viewer.js';
+import { MeshBuffers } from './mesh-buffers.js';
+import { GrabTool } from './grab-tool.js';
+import { createPanel, SAMPLES } from './panel.js';
+import { createStatsOverlay } from './stats-overlay.js';
+import { createFileInput, createToaster, download } from './file-io.js';
+import { STYLE } from './style.js';
+import * as THREE from 'three';
+
+const DEFAULT_STATE = {
+  epsilon: 0.05, minLength: 0.2, maxLength: 5, features: 0, iterations: 5,
+  handleRadius: 5, roiRadius: 20, shading: 'matcap', flat: false, wireframe: false,
+};
+
+export async function createSculptApp(container, options = {}) {
+  const opts = { model: SAMPLES.sphere, ui: true, keyboard: 'focus', ...options };
+  const root = document.createElement('div');
+  root.className = 'adasculpt-root';
+  root.tabIndex = 0;
+  const style = document.createElement('style');
+  style.textContent = STYLE;
+  root.appendChild(style);
+  container.appendChild(root);
+
+  const Module = await instantiateCore(opts.wasmUrl);
+  const session = new Module.Session();
+  const viewer = createViewer(root);
+  const buffers = new MeshBuffers(Module);
+  buffers.onGeometry = (g, lines) => viewer.setGeometry(g, lines);
+  const toaster = createToaster(root);
+  const state = { ...DEFAULT_STATE, sample: 'sphere' };
+  let diagonal = 1;
+  let remeshing = null;   // {done, total} while a whole-mesh remesh runs
+  let disposed = false;
+  let firstRenderMs = null;
+  let quality = {};
+  const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0 };
+
+  // ---- keeping three.js in step with the core
+  function sync(changes) {
+    const t0 = performance.now();
+    const ch = changes || session.changes();
+    if (buffers.apply(ch)) viewer.requestRender();
+    frame.copyMs = performance.now() - t0;
+    frame.vertices = ch.vertices;
+    frame.faces = ch.faces;
+    frame.core = ch.timings;
+  }
+
+  function refreshQuality() {
+    quality = JSON.parse(session.stats());
+    if (stats) {
+      stats.update({
+        vertices: quality.vertices ?? 0, faces: quality.faces ?? 0,
+        minAngle: quality.min_angle_deg, meanMinAngle: quality.mean_min_angle_deg,
+      });
+    }
+    if (panel) panel.setHistory(session.canUndo(), session.canRedo());
+  }
+
+  // Settings in the panel are percent of the diagonal; the core answers in absolute lengths.
+  function readSettings() {
+    const s = JSON.parse(session.settings());
+    diagonal = s.diagonal || 1;
+    const pct = (x) => Math.round((x / diagonal) * 100 * 1e4) / 1e4;
+    state.epsilon = pct(s.epsilon);
+    state.minLength = pct(s.min_length);
+    state.maxLength = pct(s.max_length);
+    state.features = s.features;
+    if (panel) panel.refresh();
+    return s;
+  }
+
+  function radii() {
+    return { handle: (state.handleRadius / 100) * diagonal, roi: (state.roiRadius / 100) * diagonal };
+  }
+
+  function afterWholeMeshChange() {
+    sync();
+    refreshQuality();
+  }
+
+  // ---- the page API
+  const api = {
+    get module() { return Module; },
+    get session() { return session; },
+
+    async load(source, format) {
+      const { bytes, name } = await readSource(source, format);
+      if (disposed) throw new Error('app disposed');
+      session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
+      sync();
+      readSettings();
+      viewer.fitView(buffers.boundingBox());
+      refreshQuality();
+      return { vertices: quality.vertices, faces: quality.faces };
+    },
+
+    setParams(p = {}) {
+      const keys = { epsilon: 'epsilon', minLength: 'min_length', maxLength: 'max_length', features: 'features' };
+      const s = {};
+      for (const [k, v] of Object.entries(p)) {
+        if (!(k in keys)) throw new Error(`setParams: unknown parameter '${k}'`);
+        s[keys[k]] = v;
+      }
+      session.setSettings(JSON.stringify(s));
+      return readSettings();
+    },
+
+    grab: {
+      begin({ center, handleRadius, roiRadius } = {}) {
+        const r = radii();
+        const c = toVec3(center, 'center');
+        session.grabBegin(c.x, c.y, c.z, handleRadius ?? r.handle, roiRadius ?? r.roi);
+        sync();
+      },
+      drag({ translate = [0, 0, 0], rotate = { axis: [0, 0, 1], degrees: 0 }, scale = 1 } = {}) {
+        const t = toVec3(translate, 'translate');
+        const a = toVec3(rotate.axis || [0, 0, 1], 'rotate.axis');
+        sync(session.grabDrag(t.x, t.y, t.z, a.x, a.y, a.z, rotate.degrees || 0, scale));
+        return { vertices: frame.vertices, faces: frame.faces, timings: frame.core };
+      },
+      end() {
+        session.grabEnd();
+        afterWholeMeshChange();
+      },
+    },
+
+    async remesh({ iterations = state.iterations } = {}) {
+      if (remeshing) throw new Error('a remesh is already running');
+      remeshing = { done: 0, total: iterations };
+      try {
+        for (let i = 0; i < iterations && !disposed; i++) {
+          if (panel) panel.setProgress(remeshing);
+          await nextFrame();
+          if (disposed) break;
+          session.remesh(1);
+          sync();
+          remeshing.done = i + 1;
+        }
+      } finally {
+        remeshing = null;
+        if (!disposed) {
+          if (panel) panel.setProgress(null);
+          refreshQuality();
+        }
+      }
+      return api.stats();
+    },
+
+    undo() {
+      if (tool && tool.active) return false;
+      const ok = session.undo();
+      afterWholeMeshChange();
+      return ok;
+    },
+    redo() {
+      if (tool && tool.active) return false;
+      const ok = session.redo();
+      afterWholeMeshChange();
+      return ok;
+    },
+
+    async replay(sessionJson) {
+      const text = typeof sessionJson === 'string' ? sessionJson : JSON.stringify(sessionJson);
+      const report = JSON.parse(session.replay(text));
+      afterWholeMeshChange();
+      return report;
+    },
+
+    stats() {
+      const t = frame.core || {};
+      return {
+        vertices: quality.vertices ?? 0,
+        faces: quality.faces ?? 0,
+        minAngle: quality.min_angle_deg ?? null,
+        meanMinAngle: quality.mean_min_angle_deg ?? null,
+        lastFrameMs: (t.total ?? 0) + frame.copyMs + frame.renderMs,
+        coreMs: t.total ?? 0,
+        phasesMs: { ...t },
+        uploadMs: frame.copyMs,
+        renderMs: frame.renderMs,
+        firstRenderMs,
+        canUndo: session.canUndo(),
+        canRedo: session.canRedo(),
+        settings: JSON.parse(session.settings()),
+        quality,
+      };
+    },
+
+    async export(format = 'obj') {
+      const bytes = session.exportMesh(format);
+      return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+    },
+
+    // Axis-aligned bounds of the drawn mesh: {min: [x,y,z], max: [x,y,z]}.
+    bounds() {
+      const b = buffers.boundingBox();
+      return { min: b.min.toArray(), max: b.max.toArray() };
+    },
+
+    dispose,
+  };
+
+  // ---- interaction: the grab tool talks to the core through this adapter
+  const keyTarget = opts.keyboard === 'global' ? window : root;
+  const core = {
+    pick(ray) {
+      if (!session.hasMesh()) return null;
+      const o = ray.origin, d = ray.direction;
+      const h = session.pick(o.x, o.y, o.z, d.x, d.y, d.z);
+      return h && h.hit ? new THREE.Vector3(h.x, h.y, h.z) : null;
+    },
+    begin(center) { guard(() => api.grab.begin({ center: center.toArray() })); },
+    drag(t) { guard(() => api.grab.drag(t)); },
+    end() { guard(() => api.grab.end()); },
+    radii,
+    scaleRadii(fh, fr) {
+      state.roiRadius = clamp(state.roiRadius * fr, 1, 80);
+      state.handleRadius = clamp(state.handleRadius * fh, 0.5, Math.min(30, state.roiRadius * 0.9));
+      if (panel) panel.refresh();
+    },
+    busy: () => !!remeshing || !session.hasMesh(),
+  };
+  const tool = new GrabTool(viewer, core, keyTarget);
+
+  function guard(fn) {
+    try {
+      return fn();
+    } catch (e) {
+      toaster.show(e.message, 'error');
+      return undefined;
+    }
+  }
+
+  const onKey = (e) => {
+    if (!(e.ctrlKey || e.metaKey) || e.altKey) return;
+    const k = e.key.toLowerCase();
+    if (k === 'z' || k === 'y') {
+      e.preventDefault();
+      guard(() => ((k === 'z' && !e.shiftKey) ? api.undo() : api.redo()));
+    }
+  };
+  keyTarget.addEventListener('keydown', onKey);
+
+  // ---- UI: file input / drop, panel, stats
+  const openFile = async (file) => {
+    try {
+      await api.load(file);
+      toaster.show(`Opened ${file.name}`);
+    } catch (e) {
+      toaster.show(`Could not open ${file.name}: ${e.message}`, 'error');
+    }
+  };
+  const fileInput = createFileInput(root, openFile);
+  let panel = null;
+  let stats = null;
+  let help = null;
+  if (opts.ui) {
+    stats = createStatsOverlay(root);
+    panel = createPanel(root, state, {
+      loadSample: (name) => {
+        state.sample = name;
+        api.load(SAMPLES[name]).catch((e) => toaster.show(`Could not load ${name}: ${e.message}`, 'error'));
+      },
+      open: () => fileInput.open(),
+      exportMesh: (fmt) => guard(() => download(session.exportMesh(fmt), `adasculpt-${state.sample}.${fmt}`)),
+      settings: () => guard(() => api.setParams({
+        epsilon: `${state.epsilon}%`, minLength: `${state.minLength}%`, maxLength: `${state.maxLength}%`, features: state.features,
+      })),
+      remesh: () => api.remesh({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
+      radii: () => { if (state.handleRadius > state.roiRadius) state.handleRadius = state.roiRadius * 0.9; tool.updateBrush(); },
+      display: () => applyDisplay(),
+      undo: () => guard(() => api.undo()),
+      redo: () => guard(() => api.redo()),
+    });
+    help = document.createElement('div');
+    help.className = 'adasculpt-help';
+    help.textContent = 'drag on the model: grab · R rotate · S scale · wheel: scale · [ ] ROI · { } handle · ' +
+      'drag elsewhere: orbit · Ctrl+Z / Ctrl+Shift+Z';
+    root.appendChild(help);
+  }
+  function applyDisplay() {
+    viewer.setShading({ mode: state.shading, flat: state.flat });
+    viewer.setWireframe(state.wireframe);
+  }
+  applyDisplay();
+
+  // ---- the frame loop: at most one wasm call (the grab tool's) and one render per frame
+  let raf = 0;
+  let statsShownAt = 0;
+  function loop(now) {
+    raf = requestAnimationFrame(loop);
+    const grabbing = tool.active;
+    tool.frame();
+    if (viewer.needsRender) {
+      const r0 = performance.now();
+      viewer.render();
+      frame.renderMs = performance.now() - r0;
+      if (firstRenderMs === null && session.hasMesh()) firstRenderMs = performance.now();
+      if (stats && grabbing) stats.tick(now);
+    }
+    if (stats && grabbing && now - statsShownAt > 100) {
+      statsShownAt = now;
+      stats.update({ timings: frame.core, uploadMs: frame.copyMs + frame.renderMs, vertices: frame.vertices, faces: frame.faces });
+    }
+  }
+  raf = requestAnimationFrame(loop);
+
+  function dispose() {
+    if (disposed) return;
+    disposed = true;
+    cancelAnimationFrame(raf);
+    keyTarget.removeEventListener('keydown', onKey);
+    tool.dispose();
+    fileInput.dispose();
+    toaster.dispose();
+    if (panel) panel.dispose();
+    if (stats) stats.dispose();
+    if (help) help.remove();
+    buffers.dispose();
+    viewer.dispose();
+    session.delete();
+    root.remove();
+  }
+
+  if (opts.model) {
+    try {
+      await api.load(opts.model);
+    } catch (e) {
+      toaster.show(`Could not load ${opts.model}: ${e.message}`, 'error');
+    }
+  }
+  return api;
+}
+
+async function readSource(source, format) {
+  let buffer;
+  let name = 'mesh';
+  if (typeof source === 'string' || source instanceof URL) {
+    const res = await fetch(source);
+    if (!res.ok) throw new Error(`${source}: HTTP ${res.status}`);
+    buffer = await res.arrayBuffer();
+    name = String(source).split(/[?#]/)[0].split('/').pop() || 'mesh';
+  } else if (typeof Blob !== 'undefined' && source instanceof Blob) {
+    buffer = await source.arrayBuffer();
+    name = source.name || 'mesh';
+  } else if (source instanceof ArrayBuffer) {
+    buffer = source;
+  } else if (ArrayBuffer.isView(source)) {
+    buffer = source.buffer.slice(source.byteOffset, source.byteOffset + source.byteLength);
+  } else {
+    throw new Error('load: expected a URL, a File/Blob or an ArrayBuffer');
+  }
+  if (format) name = `${name.replace(/\.[^.]*$/, '')}.${String(format).replace(/^\./, '')}`;
+  return { bytes: new Uint8Array(buffer), name };
+}
+
+function toVec3(v, what) {
+  if (v && v.isVector3) return v;
+  if (Array.isArray(v) && v.length === 3 && v.every(Number.isFinite)) return new THREE.Vector3(v[0], v[1], v[2]);
+  if (v && [v.x, v.y, v.z].every(Number.isFinite)) return new THREE.Vector3(v.x, v.y, v.z);
+  throw new Error(`${what}: expected [x, y, z]`);
+}
+
+function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }
+function nextFrame() { return new Promise((resolve) => requestAnimationFrame(() => resolve())); }

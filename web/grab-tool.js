@@ -1,0 +1,185 @@
+// The grab tool: press on the surface to take a handle there, drag to move it in the view plane.
+// While dragging: R rotates (about the view axis, by horizontal mouse motion), S scales, G goes
+// back to moving; the wheel scales. Not on the surface (or other buttons): the orbit controls act.
+// Radii: [ and ] resize the region of interest, { and } (with Shift) the handle; Shift+wheel too.
+//
+// Pointer events only record the wanted transform; frame() (called once per animation frame by the
+// app) sends it to the core: at most one wasm call per frame however many events arrive.
+import * as THREE from 'three';
+
+export class GrabTool {
+  // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform), end(), radii(),
+  //         scaleRadii(handleFactor, roiFactor), busy() }
+  constructor(viewer, core, keyTarget) {
+    this.viewer = viewer;
+    this.core = core;
+    this.grab = null;   // {center, plane, start, mode, translate, degrees, scale, modeX, ...}
+    this.dirty = false;
+    this.hover = null;  // last pointer position for the hover preview
+    this.hoverPending = false;
+    this.hoverPoint = null;
+    this.pointerInside = false;
+    this.keyTarget = keyTarget;
+    const el = viewer.renderer.domElement;
+    this.listeners = [
+      [el, 'pointerdown', (e) => this.onPointerDown(e), { capture: true }],
+      [el, 'pointermove', (e) => this.onPointerMove(e)],
+      [el, 'pointerup', (e) => this.onPointerUp(e)],
+      [el, 'pointercancel', (e) => this.onPointerUp(e)],
+      [el, 'pointerenter', () => { this.pointerInside = true; }],
+      [el, 'pointerleave', () => { this.pointerInside = false; this.hover = null; this.updateBrush(); }],
+      [el, 'wheel', (e) => this.onWheel(e), { capture: true, passive: false }],
+      [keyTarget, 'keydown', (e) => this.onKey(e)],
+    ];
+    for (const [t, type, fn, opt] of this.listeners) t.addEventListener(type, fn, opt);
+  }
+
+  dispose() {
+    for (const [t, type, fn, opt] of this.listeners) t.removeEventListener(type, fn, opt);
+  }
+
+  get active() { return this.grab !== null; }
+
+  onPointerDown(e) {
+    if (e.button !== 0 || this.grab || this.core.busy()) return;
+    const ray = this.viewer.ray(e.clientX, e.clientY);
+    const hit = this.core.pick(ray);
+    if (!hit) return; // empty space: let OrbitControls rotate the view
+    e.stopImmediatePropagation();
+    e.preventDefault();
+    this.viewer.controls.enabled = false;
+    e.target.setPointerCapture(e.pointerId);
+    const normal = this.viewer.camera.getWorldDirection(new THREE.Vector3());
+    this.grab = {
+      pointerId: e.pointerId,
+      center: hit.clone(),
+      plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit),
+      mode: 'translate',
+      translate: new THREE.Vector3(),
+      offset: new THREE.Vector3(), // translation frozen while rotating/scaling
+      degrees: 0, scale: 1,
+      modeX: e.clientX, modeStartValue: 0,
+      x: e.clientX, y: e.clientY,
+    };
+    this.core.begin(hit);
+    this.dirty = false;
+    this.updateBrush();
+  }
+
+  onPointerMove(e) {
+    if (!this.grab) {
+      this.hover = { x: e.clientX, y: e.clientY };
+      this.hoverPending = true;
+      return;
+    }
+    if (e.pointerId !== this.grab.pointerId) return;
+    this.grab.x = e.clientX;
+    this.grab.y = e.clientY;
+    this.updateTransform();
+  }
+
+  updateTransform() {
+    const g = this.grab;
+    const dx = g.x - g.modeX;
+    if (g.mode === 'translate') {
+      const p = this.viewer.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
+      if (p) g.translate.copy(p).sub(g.center).sub(g.offset);
+    } else if (g.mode === 'rotate') {
+      g.degrees = g.modeStartValue + dx * 0.5;
+    } else if (g.mode === 'scale') {
+      g.scale = g.modeStartValue * Math.exp(dx / 200);
+    }
+    this.dirty = true;
+  }
+
+  setMode(mode) {
+    const g = this.grab;
+    if (!g || g.mode === mode) return;
+    if (g.mode === 'translate') g.offset.set(0, 0, 0);
+    // The new mode starts from the current pointer position and the current value.
+    g.mode = mode;
+    g.modeX = g.x;
+    g.modeStartValue = mode === 'rotate' ? g.degrees : mode === 'scale' ? g.scale : 0;
+    if (mode === 'translate') {
+      // Continue moving from where the handle is: the ray now hits the plane elsewhere.
+      const p = this.viewer.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
+      if (p) g.offset.copy(p).sub(g.center).sub(g.translate);
+    }
+  }
+
+  onPointerUp(e) {
+    if (!this.grab || e.pointerId !== this.grab.pointerId) return;
+    if (this.dirty) this.frame(); // the last motion still reaches the core
+    this.grab = null;
+    this.core.end();
+    this.viewer.controls.enabled = true;
+    this.hover = { x: e.clientX, y: e.clientY };
+    this.hoverPending = true;
+  }
+
+  onWheel(e) {
+    if (this.grab) {
+      e.preventDefault();
+      e.stopImmediatePropagation();
+      if (this.grab.mode !== 'scale') this.grab.scale *= Math.exp(-e.deltaY * 0.001);
+      else this.grab.modeStartValue *= Math.exp(-e.deltaY * 0.001);
+      this.updateTransform();
+    } else if (e.shiftKey) {
+      e.preventDefault();
+      e.stopImmediatePropagation();
+      const f = Math.exp(-Math.sign(e.deltaY || e.deltaX) * 0.1);
+      this.core.scaleRadii(f, f);
+      this.updateBrush();
+    }
+  }
+
+  onKey(e) {
+    if (e.ctrlKey || e.metaKey || e.altKey || isTextInput(e.target)) return;
+    const k = e.key;
+    if (this.grab && (k === 'r' || k === 'R')) this.setMode('rotate');
+    else if (this.grab && (k === 's' || k === 'S')) this.setMode('scale');
+    else if (this.grab && (k === 'g' || k === 'G' || k === 't' || k === 'T')) this.setMode('translate');
+    else if (k === '[' || k === ']') this.core.scaleRadii(1, k === ']' ? 1.15 : 1 / 1.15);
+    else if (k === '{' || k === '}') this.core.scaleRadii(k === '}' ? 1.15 : 1 / 1.15, 1);
+    else return;
+    e.preventDefault();
+    this.updateBrush();
+  }
+
+  // The transform since grab begin, in the page API's terms.
+  transform() {
+    const g = this.grab;
+    const axis = this.viewer.camera.getWorldDirection(new THREE.Vector3()).negate();
+    return { translate: g.translate.toArray(), rotate: { axis: axis.toArray(), degrees: g.degrees }, scale: g.scale };
+  }
+
+  // Once per animation frame.
+  frame() {
+    if (this.grab) {
+      if (this.dirty) {
+        this.dirty = false;
+        this.core.drag(this.transform());
+        this.updateBrush();
+      }
+    } else if (this.hoverPending && this.hover && this.pointerInside && !this.core.busy()) {
+      this.hoverPending = false;
+      this.hoverPoint = this.core.pick(this.viewer.ray(this.hover.x, this.hover.y));
+      this.updateBrush();
+    }
+  }
+
+  updateBrush() {
+    const { handle, roi } = this.core.radii();
+    if (this.grab) {
+      const c = this.grab.center.clone().add(this.grab.translate);
+      this.viewer.setBrush({ center: c, handleRadius: handle, roiRadius: roi, visible: true });
+    } else {
+      const visible = !!(this.hover && this.hoverPoint);
+      this.viewer.setBrush({ center: this.hoverPoint || undefined, handleRadius: handle, roiRadius: roi, visible });
+    }
+  }
+}
+
+function isTextInput(t) {
+  return t && (t.tagName === 'INPUT' || t.tagName === 'TEXTAREA' || t.tagName === 'SELECT' || t.isContentEditable);
+}

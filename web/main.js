@@ -1,0 +1,7 @@
+// The standalone page: the app fills the window and is scriptable as window.app.
+import { createSculptApp } from './app.js';
+
+const params = new URLSearchParams(location.search);
+const model = params.get('model') || undefined; // e.g. ?model=models/fandisk.off
+window.app = await createSculptApp(document.getElementById('app'), { keyboard: 'global', ...(model ? { model } : {}) });
+document.documentElement.dataset.ready = 'true';

@@ -1,0 +1,58 @@
+// The control panel (lil-gui): remeshing settings, brush radii, display, whole-mesh remesh with
+// progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
+import GUI from 'lil-gui';
+
+export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
+
+// state: the panel's values (percent lengths, radii, display); actions: what the buttons do.
+export function createPanel(parent, state, actions) {
+  const gui = new GUI({ container: parent, title: 'adasculpt', width: 250 });
+  gui.domElement.classList.add('adasculpt-panel');
+
+  const files = gui.addFolder('Model');
+  const ui = { sample: state.sample || 'sphere', format: 'obj' };
+  files.add(ui, 'sample', Object.keys(SAMPLES)).name('sample').onChange((v) => actions.loadSample(v));
+  files.add({ open: () => actions.open() }, 'open').name('open file… (obj stl ply off)');
+  files.add(ui, 'format', ['obj', 'stl', 'ply', 'off']).name('export format');
+  files.add({ save: () => actions.exportMesh(ui.format) }, 'save').name('export / download');
+
+  const remesh = gui.addFolder('Remeshing');
+  const settingsChanged = () => actions.settings();
+  remesh.add(state, 'epsilon', 0.005, 1, 0.005).name('epsilon (% diag)').onFinishChange(settingsChanged);
+  remesh.add(state, 'minLength', 0.01, 5, 0.01).name('min length (%)').onFinishChange(settingsChanged);
+  remesh.add(state, 'maxLength', 0.5, 20, 0.1).name('max length (%)').onFinishChange(settingsChanged);
+  remesh.add(state, 'features', 0, 90, 1).name('features (deg, 0 off)').onFinishChange(settingsChanged);
+  remesh.add(state, 'iterations', 1, 20, 1).name('iterations');
+  const remeshButton = remesh.add({ run: () => actions.remesh() }, 'run').name('remesh whole mesh');
+
+  const brush = gui.addFolder('Grab');
+  brush.add(state, 'handleRadius', 0.5, 30, 0.1).name('handle radius (%)').onChange(() => actions.radii());
+  brush.add(state, 'roiRadius', 1, 80, 0.5).name('ROI radius (%)').onChange(() => actions.radii());
+
+  const view = gui.addFolder('Display');
+  view.add(state, 'shading', ['matcap', 'standard']).name('shading').onChange(() => actions.display());
+  view.add(state, 'flat').name('flat shading').onChange(() => actions.display());
+  view.add(state, 'wireframe').name('wireframe').onChange(() => actions.display());
+
+  const history = gui.addFolder('History');
+  const undo = history.add({ undo: () => actions.undo() }, 'undo').name('undo (Ctrl+Z)');
+  const redo = history.add({ redo: () => actions.redo() }, 'redo').name('redo (Ctrl+Shift+Z)');
+
+  return {
+    gui,
+    refresh() {
+      for (const c of gui.controllersRecursive()) c.updateDisplay();
+    },
+    setHistory(canUndo, canRedo) {
+      undo.disable(!canUndo);
+      redo.disable(!canRedo);
+    },
+    setSample(name) { ui.sample = name; this.refresh(); },
+    // null: idle; {done, total}: running.
+    setProgress(p) {
+      remeshButton.name(p ? `remeshing… ${p.done}/${p.total}` : 'remesh whole mesh');
+      remeshButton.disable(!!p);
+    },
+    dispose() { gui.destroy(); },
+  };
+}

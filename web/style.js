@@ -1,0 +1,25 @@
+// The app's CSS, injected into its own root element (host pages get no global stylesheet).
+export const STYLE = `
+.adasculpt-root { position: relative; width: 100%; height: 100%; overflow: hidden; outline: none;
+  font: 12px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; color: #e6e8ec; background: #1c1e23;
+  user-select: none; -webkit-user-select: none; }
+.adasculpt-canvas { display: block; width: 100%; height: 100%; touch-action: none; }
+.adasculpt-stats { position: absolute; left: 10px; top: 10px; padding: 6px 10px; border-radius: 6px;
+  background: rgba(18, 20, 25, 0.72); font-variant-numeric: tabular-nums; pointer-events: none; }
+.adasculpt-stats b { color: #fff; }
+.adasculpt-stats .phases { color: #9aa3b2; font-size: 11px; }
+.adasculpt-root .adasculpt-panel { position: absolute; right: 10px; top: 10px; max-height: calc(100% - 20px);
+  overflow-y: auto; }
+.adasculpt-file { display: none; }
+.adasculpt-drop { position: absolute; inset: 12px; display: none; align-items: center; justify-content: center;
+  border: 2px dashed #7fb2ff; border-radius: 12px; background: rgba(30, 60, 110, 0.35); font-size: 18px;
+  pointer-events: none; }
+.adasculpt-drop.show { display: flex; }
+.adasculpt-toasts { position: absolute; left: 50%; bottom: 34px; transform: translateX(-50%); display: flex;
+  flex-direction: column; align-items: center; gap: 6px; max-width: 90%; pointer-events: none; }
+.adasculpt-toast { padding: 8px 14px; border-radius: 6px; background: rgba(30, 33, 40, 0.94);
+  box-shadow: 0 2px 12px rgba(0, 0, 0, 0.45); }
+.adasculpt-toast.error { background: rgba(160, 32, 38, 0.96); color: #fff; }
+.adasculpt-help { position: absolute; left: 10px; bottom: 8px; padding: 3px 8px; border-radius: 4px;
+  background: rgba(18, 20, 25, 0.5); color: #aab2c0; font-size: 11px; pointer-events: none; }
+`;
