@@ -3,5 +3,5 @@ import { createSculptApp } from './app.js';
 
 const params = new URLSearchParams(location.search);
 const model = params.get('model') || undefined; // e.g. ?model=models/fandisk.off
-window.app = await createSculptApp(document.getElementById('app'), { keyboard: 'global', ...(model ? { model } : {}) });
+window.app = await createSculptApp(document.getElementById('sculpt'), { keyboard: 'global', ...(model ? { model } : {}) });
 document.documentElement.dataset.ready = 'true';
