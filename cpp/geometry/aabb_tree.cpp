@@ -43,7 +43,7 @@ void TriangleTree::build(std::vector<Point> points, std::vector<std::array<std::
   nodes_.clear();
   if (!order.empty()) {
     nodes_.reserve(2 * order.size() / kLeafSize + 1);
-    build_node(order, centroids, 0, static_cast<std::uint32_t>(order.size()));
+    build_node(order, centroids, 0, static_cast<std::uint32_t>(order.size()), 0);
   }
 
   // Store triangles in leaf order so that a leaf reads one contiguous block.
@@ -76,23 +76,87 @@ void TriangleTree::build(const mesh::SurfaceMesh& mesh) {
   for (auto& s : source_) s = faces[s];
 }
 
-// Top-down median split on the longest axis of the centroid bounds. Always halving the
-// triangle count bounds the depth by log2(n) (well under kMaxDepth), so neither this
-// recursion nor the fixed traversal stack can overflow.
+// Splits [first, first+count) of order in two and returns the size of the left part.
+// Binned surface-area heuristic on the longest centroid axis: fewer overlapping boxes than
+// a median split, so fewer nodes visited per query. Falls back to the median when the
+// heuristic cannot separate the centroids.
+std::uint32_t TriangleTree::split(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
+                                  std::uint32_t first, std::uint32_t count, int depth) const {
+  Point clo(std::numeric_limits<double>::infinity()), chi(-std::numeric_limits<double>::infinity());
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    clo = glm::min(clo, centroids[order[i]]);
+    chi = glm::max(chi, centroids[order[i]]);
+  }
+  const Vec3 extent = chi - clo;
+  const int axis = extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
+  auto begin = order.begin() + first, end = begin + count;
+  const std::uint32_t half = count / 2;
+  auto median = [&] {
+    std::nth_element(begin, begin + half, end,
+                     [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    return half;
+  };
+  // Deep in the tree only the median keeps the depth (and so the query stack) bounded.
+  if (!(extent[axis] > 0) || depth > kMaxDepth / 2) return median();
+
+  constexpr int kBins = 16;
+  struct Bin {
+    Point lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    std::uint32_t n = 0;
+  };
+  Bin bins[kBins];
+  const double scale = kBins / extent[axis];
+  auto bin_of = [&](std::uint32_t t) {
+    return std::min(kBins - 1, static_cast<int>((centroids[t][axis] - clo[axis]) * scale));
+  };
+  for (auto it = begin; it != end; ++it) {
+    Bin& b = bins[bin_of(*it)];
+    ++b.n;
+    for (std::uint32_t k : tris_[*it]) {
+      b.lo = glm::min(b.lo, points_[k]);
+      b.hi = glm::max(b.hi, points_[k]);
+    }
+  }
+  auto half_area = [](const Point& lo, const Point& hi) {
+    const Vec3 d = hi - lo;
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+  };
+  // Sweep from the right to get the cost of every right part, then from the left.
+  double right_cost[kBins];
+  Point lo = bins[kBins - 1].lo, hi = bins[kBins - 1].hi;
+  std::uint32_t n = 0;
+  for (int i = kBins - 1; i > 0; --i) {
+    lo = glm::min(lo, bins[i].lo);
+    hi = glm::max(hi, bins[i].hi);
+    n += bins[i].n;
+    right_cost[i] = n ? n * half_area(lo, hi) : 0.0;
+  }
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best_bin = -1;
+  lo = bins[0].lo, hi = bins[0].hi, n = 0;
+  for (int i = 0; i < kBins - 1; ++i) {
+    lo = glm::min(lo, bins[i].lo);
+    hi = glm::max(hi, bins[i].hi);
+    n += bins[i].n;
+    if (n == 0 || n == count) continue;
+    const double cost = n * half_area(lo, hi) + right_cost[i + 1];
+    if (cost < best_cost) best_cost = cost, best_bin = i;
+  }
+  if (best_bin < 0) return median();
+  auto mid = std::partition(begin, end, [&](std::uint32_t t) { return bin_of(t) <= best_bin; });
+  return static_cast<std::uint32_t>(mid - begin);
+}
+
 std::uint32_t TriangleTree::build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
-                                       std::uint32_t first, std::uint32_t count) {
+                                       std::uint32_t first, std::uint32_t count, int depth) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.push_back(Node{});
   Point lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  Point clo = lo, chi = hi;
-  for (std::uint32_t i = first; i < first + count; ++i) {
+  for (std::uint32_t i = first; i < first + count; ++i)
     for (std::uint32_t k : tris_[order[i]]) {
       lo = glm::min(lo, points_[k]);
       hi = glm::max(hi, points_[k]);
     }
-    clo = glm::min(clo, centroids[order[i]]);
-    chi = glm::max(chi, centroids[order[i]]);
-  }
   nodes_[index].lo = lo;
   nodes_[index].hi = hi;
   if (count <= kLeafSize) {
@@ -100,14 +164,9 @@ std::uint32_t TriangleTree::build_node(std::vector<std::uint32_t>& order, const 
     nodes_[index].count = count;
     return index;
   }
-  const Vec3 extent = chi - clo;
-  const int axis = extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
-  const std::uint32_t half = count / 2;
-  auto begin = order.begin() + first;
-  std::nth_element(begin, begin + half, begin + count,
-                   [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
-  build_node(order, centroids, first, half);  // lands at index + 1
-  const std::uint32_t right = build_node(order, centroids, first + half, count - half);
+  const std::uint32_t left = split(order, centroids, first, count, depth);
+  build_node(order, centroids, first, left, depth + 1);  // lands at index + 1
+  const std::uint32_t right = build_node(order, centroids, first + left, count - left, depth + 1);
   nodes_[index].first = right;
   nodes_[index].count = 0;
   return index;
@@ -133,7 +192,7 @@ void TriangleTree::search(const Point& q, ClosestHit& best) const {
     std::uint32_t node;
     double d2;
   };
-  Entry stack[kMaxDepth];
+  Entry stack[2 * kMaxDepth];  // holds at most depth + 1 entries
   int top = 0;
   stack[top++] = {0, box_distance2(q, nodes_[0].lo, nodes_[0].hi)};
   while (top > 0) {
@@ -173,7 +232,8 @@ TriangleTree::ClosestHit TriangleTree::closest_point(const Point& q, const Close
 TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3& dir) const {
   RayHit best;
   if (nodes_.empty()) return best;
-  double t_best = std::numeric_limits<double>::infinity();
+  constexpr double kMiss = std::numeric_limits<double>::infinity();
+  double t_best = kMiss;
   // Slab test; an axis the ray is parallel to only checks that the origin is inside the slab
   // (avoids 0 * inf = NaN).
   Vec3 inv;
@@ -200,10 +260,10 @@ TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3
     std::uint32_t node;
     double t;
   };
-  Entry stack[kMaxDepth];
+  Entry stack[2 * kMaxDepth];  // holds at most depth + 1 entries
   int top = 0;
   double t_root = box_entry(nodes_[0]);
-  if (t_root == std::numeric_limits<double>::infinity()) return best;
+  if (t_root == kMiss) return best;
   stack[top++] = {0, t_root};
   while (top > 0) {
     const Entry e = stack[--top];
@@ -213,8 +273,9 @@ TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3
       std::uint32_t near = e.node + 1, far = n.first;
       double tn = box_entry(nodes_[near]), tf = box_entry(nodes_[far]);
       if (tf < tn) std::swap(near, far), std::swap(tn, tf);
-      if (tf <= t_best) stack[top++] = {far, tf};
-      if (tn <= t_best) stack[top++] = {near, tn};
+      // A missed box reports +inf, which must not pass "<= t_best" while t_best is still inf.
+      if (tf < kMiss && tf <= t_best) stack[top++] = {far, tf};
+      if (tn < kMiss && tn <= t_best) stack[top++] = {near, tn};
       continue;
     }
     for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {

@@ -3,7 +3,7 @@
 // ray queries, e.g. projecting remeshed vertices back onto the reference surface and
 // picking the surface under the mouse.
 //
-// Flat arrays, nodes in depth-first order (left child follows its parent), triangle
+// Binned-SAH BVH in flat arrays, nodes in depth-first order (left child follows its parent), triangle
 // corners copied into leaf order so a leaf is one contiguous read. Queries use a fixed
 // stack on the call stack and never allocate, so they are safe to run from many threads
 // on one const tree.
@@ -62,8 +62,10 @@ class TriangleTree {
   static constexpr std::uint32_t kLeafSize = 4;
   static constexpr int kMaxDepth = 64;
 
+  std::uint32_t split(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids, std::uint32_t first,
+                      std::uint32_t count, int depth) const;
   std::uint32_t build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
-                          std::uint32_t first, std::uint32_t count);
+                          std::uint32_t first, std::uint32_t count, int depth);
   void search(const Point& q, ClosestHit& best) const;
   void test_triangle(const Point& q, std::uint32_t tri, ClosestHit& best) const;
 
