@@ -34,13 +34,16 @@ export async function createSculptApp(container, options = {}) {
   root.appendChild(style);
   container.appendChild(root);
 
+  // The first model downloads while the wasm module compiles.
+  const firstModel = opts.model ? readSource(opts.model).catch((e) => e) : null;
   const Module = await instantiateCore(opts.wasmUrl);
+  const wasmReadyMs = performance.now();
   const session = new Module.Session();
   const viewer = createViewer(root);
   const buffers = new MeshBuffers(Module);
   buffers.onGeometry = (g, lines) => viewer.setGeometry(g, lines);
   const toaster = createToaster(root);
-  const state = { ...DEFAULT_STATE, sample: 'sphere' };
+  const state = { ...DEFAULT_STATE, sample: Object.keys(SAMPLES).find((k) => SAMPLES[k] === opts.model) || 'sphere' };
   let diagonal = 1;
   let remeshing = null;   // {done, total} while a whole-mesh remesh runs
   let disposed = false;
@@ -87,6 +90,16 @@ export async function createSculptApp(container, options = {}) {
     return { handle: (state.handleRadius / 100) * diagonal, roi: (state.roiRadius / 100) * diagonal };
   }
 
+  function loadBytes({ bytes, name }) {
+    if (disposed) throw new Error('app disposed');
+    session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
+    sync();
+    readSettings();
+    viewer.fitView(buffers.boundingBox());
+    refreshQuality();
+    return { vertices: quality.vertices, faces: quality.faces };
+  }
+
   function afterWholeMeshChange() {
     sync();
     refreshQuality();
@@ -98,14 +111,7 @@ export async function createSculptApp(container, options = {}) {
     get session() { return session; },
 
     async load(source, format) {
-      const { bytes, name } = await readSource(source, format);
-      if (disposed) throw new Error('app disposed');
-      session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
-      sync();
-      readSettings();
-      viewer.fitView(buffers.boundingBox());
-      refreshQuality();
-      return { vertices: quality.vertices, faces: quality.faces };
+      return loadBytes(await readSource(source, format));
     },
 
     setParams(p = {}) {
@@ -193,6 +199,7 @@ export async function createSculptApp(container, options = {}) {
         uploadMs: frame.copyMs,
         renderMs: frame.renderMs,
         firstRenderMs,
+        wasmReadyMs,
         canUndo: session.canUndo(),
         canRedo: session.canRedo(),
         settings: JSON.parse(session.settings()),
@@ -286,6 +293,9 @@ export async function createSculptApp(container, options = {}) {
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
     });
+    const inset = () => viewer.setInsetRight(panel.gui._closed ? 0 : panel.gui.domElement.offsetWidth + 10);
+    panel.gui.onOpenClose(inset);
+    inset();
     help = document.createElement('div');
     help.className = 'adasculpt-help';
     help.textContent = 'drag on the model: grab · R rotate · S scale · wheel: scale · [ ] ROI · { } handle · ' +
@@ -336,9 +346,12 @@ export async function createSculptApp(container, options = {}) {
     root.remove();
   }
 
-  if (opts.model) {
+  viewer.precompile(); // shaders compile while the model is parsed
+  if (firstModel) {
     try {
-      await api.load(opts.model);
+      const source = await firstModel;
+      if (source instanceof Error) throw source;
+      loadBytes(source);
     } catch (e) {
       toaster.show(`Could not load ${opts.model}: ${e.message}`, 'error');
     }

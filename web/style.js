@@ -9,7 +9,7 @@ export const STYLE = `
 .adasculpt-stats b { color: #fff; }
 .adasculpt-stats .phases { color: #9aa3b2; font-size: 11px; }
 .adasculpt-root .adasculpt-panel { position: absolute; right: 10px; top: 10px; max-height: calc(100% - 20px);
-  overflow-y: auto; }
+  overflow-y: auto; --widget-height: 18px; --spacing: 3px; --padding: 3px; }
 .adasculpt-file { display: none; }
 .adasculpt-drop { position: absolute; inset: 12px; display: none; align-items: center; justify-content: center;
   border: 2px dashed #7fb2ff; border-radius: 12px; background: rgba(30, 60, 110, 0.35); font-size: 18px;
@@ -20,6 +20,6 @@ export const STYLE = `
 .adasculpt-toast { padding: 8px 14px; border-radius: 6px; background: rgba(30, 33, 40, 0.94);
   box-shadow: 0 2px 12px rgba(0, 0, 0, 0.45); }
 .adasculpt-toast.error { background: rgba(160, 32, 38, 0.96); color: #fff; }
-.adasculpt-help { position: absolute; left: 10px; bottom: 8px; padding: 3px 8px; border-radius: 4px;
+.adasculpt-help { position: absolute; left: 10px; bottom: 8px; max-width: calc(100% - 300px); padding: 3px 8px; border-radius: 4px;
   background: rgba(18, 20, 25, 0.5); color: #aab2c0; font-size: 11px; pointer-events: none; }
 `;

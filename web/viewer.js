@@ -48,10 +48,16 @@ export function createViewer(root) {
   const requestRender = () => { needsRender = true; };
   controls.addEventListener('change', requestRender);
 
+  // A panel over the right edge hides part of the canvas: shift the projection centre into the
+  // free part (the canvas still fills the container, so nothing jumps when the panel closes).
+  let insetRight = 0;
   const resize = () => {
     const w = Math.max(1, root.clientWidth), h = Math.max(1, root.clientHeight);
     renderer.setSize(w, h, false);
     camera.aspect = w / h;
+    const inset = Math.min(insetRight, w / 2);
+    if (inset > 0) camera.setViewOffset(w, h, inset / 2, 0, w, h);
+    else camera.clearViewOffset();
     camera.updateProjectionMatrix();
     requestRender();
   };
@@ -72,12 +78,21 @@ export function createViewer(root) {
       requestRender();
     },
 
-    // Frames the box: centre as orbit target, distance so that its bounding sphere fits.
+    setInsetRight(px) {
+      insetRight = px;
+      resize();
+    },
+
+    // Frames the box: centre as orbit target, distance so that its bounding sphere fits the free
+    // part of the canvas (left of the inset).
     fitView(box) {
       if (box.isEmpty()) return;
       const sphere = box.getBoundingSphere(new THREE.Sphere());
-      const fov = THREE.MathUtils.degToRad(camera.fov);
-      const dist = sphere.radius / Math.sin(Math.min(fov, fov * camera.aspect) / 2) * 1.05;
+      const w = Math.max(1, root.clientWidth), h = Math.max(1, root.clientHeight);
+      const freeAspect = Math.max(0.2, (w - Math.min(insetRight, w / 2)) / h);
+      const halfV = THREE.MathUtils.degToRad(camera.fov) / 2;
+      const halfH = Math.atan(Math.tan(halfV) * freeAspect);
+      const dist = (sphere.radius / Math.sin(Math.min(halfV, halfH))) * 1.08;
       const dir = new THREE.Vector3(0.35, 0.25, 1).normalize();
       controls.target.copy(sphere.center);
       camera.position.copy(sphere.center).addScaledVector(dir, dist);
@@ -112,6 +127,10 @@ export function createViewer(root) {
       ndc.set(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
       raycaster.setFromCamera(ndc, camera);
       return raycaster.ray;
+    },
+
+    precompile() {
+      renderer.compileAsync(scene, camera).catch(() => {});
     },
 
     render() {
