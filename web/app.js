@@ -293,6 +293,7 @@ export async function createSculptApp(container, options = {}) {
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
     });
+    if (root.clientWidth < 720) panel.gui.close(); // small embeds: the panel starts as a title bar
     const inset = () => viewer.setInsetRight(panel.gui._closed ? 0 : panel.gui.domElement.offsetWidth + 10);
     panel.gui.onOpenClose(inset);
     inset();
