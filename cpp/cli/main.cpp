@@ -12,7 +12,7 @@
 #endif
 
 // The subcommands, in --help order. Adding one: cmd_<name>.cpp plus one X(<name>) here.
-#define ADASCULPT_COMMANDS(X) X(stats)
+#define ADASCULPT_COMMANDS(X) X(stats) X(remesh) X(replay)
 
 namespace adasculpt::cli {
 #define ADASCULPT_DECLARE(name) void register_##name(CLI::App& app);

@@ -74,6 +74,7 @@ size_t Remesher::Impl::flip_edges() {
 // poor triangle: the valence flips leave a few of these where the sizing changes quickly.
 size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   gather_scope_edges();
+  const double poor_cos = std::cos(poor_angle);
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
@@ -82,17 +83,16 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     Vertex vc = mesh.to_vertex(mesh.next(h)), vd = mesh.to_vertex(mesh.next(o));
     if (scope[vc] == kOutside || scope[vd] == kOutside) continue;
     const Point &a = mesh.position(va), &b = mesh.position(vb), &c = mesh.position(vc), &d = mesh.position(vd);
-    double t1[3], t2[3], u1[3], u2[3];
-    geometry::triangle_angles(a, b, c, t1);
-    geometry::triangle_angles(b, a, d, t2);
-    double before = std::min({t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]});
-    if (before >= poor_angle) continue;
+    // Compare smallest angles through their cosines (larger cosine = smaller angle).
+    double before = std::max(min_angle_cosine(a, b, c), min_angle_cosine(b, a, d));
+    if (before <= poor_cos) continue;
     // Delaunay test: the angles opposite the edge sum to more than pi.
-    if (t1[2] + t2[2] <= M_PI) continue;
-    geometry::triangle_angles(a, d, c, u1);
-    geometry::triangle_angles(d, b, c, u2);
-    double after = std::min({u1[0], u1[1], u1[2], u2[0], u2[1], u2[2]});
-    if (after <= before) continue;
+    Vec3 ca = a - c, cb = b - c, da = a - d, db = b - d;
+    double angle_c = std::atan2(glm::length(glm::cross(ca, cb)), glm::dot(ca, cb));
+    double angle_d = std::atan2(glm::length(glm::cross(da, db)), glm::dot(da, db));
+    if (angle_c + angle_d <= M_PI) continue;
+    double after = std::max(min_angle_cosine(a, d, c), min_angle_cosine(d, b, c));
+    if (after >= before) continue;
     if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
     ++flips;

@@ -1,6 +1,7 @@
 // Reference surface, feature edges and the sizing field of a Remesher.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -23,6 +24,7 @@ Remesher::Impl::Impl(SurfaceMesh& m, const RemeshOptions& o) : mesh(m), opt(o) {
   vclass = mesh.vertex_property<std::uint8_t>("remesh:class", kFree);
   scope = mesh.vertex_property<std::uint8_t>("remesh:scope", kOutside);
   ref_hint = mesh.vertex_property<std::uint32_t>("remesh:hint", UINT32_MAX);
+  segment_hint = mesh.vertex_property<std::uint32_t>("remesh:segment_hint", UINT32_MAX);
   feature = mesh.edge_property<std::uint8_t>("remesh:feature", 0);
   mark_features();
 }
@@ -121,40 +123,136 @@ void Remesher::Impl::build_reference() {
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
   tree.build(std::move(points), std::move(triangles));
   has_reference = !tree.empty();
+  // Incidence of the tree's triangles (it drops degenerate ones and reorders).
+  const auto& tris = tree.triangles();
+  ref_fan_offset.assign(tree.points().size() + 1, 0);
+  for (const auto& t : tris)
+    for (auto i : t) ++ref_fan_offset[i + 1];
+  for (size_t i = 1; i < ref_fan_offset.size(); ++i) ref_fan_offset[i] += ref_fan_offset[i - 1];
+  ref_fan.resize(ref_fan_offset.back());
+  std::vector<std::uint32_t> fill(ref_fan_offset.begin(), ref_fan_offset.end() - 1);
+  for (std::uint32_t ti = 0; ti < tris.size(); ++ti)
+    for (auto i : tris[ti]) ref_fan[fill[i]++] = ti;
+
+  ref_segments.clear();
+  for (Edge e : mesh.edges())
+    if (is_feature(e)) ref_segments.push_back({mesh.vertex(e, 0).idx, mesh.vertex(e, 1).idx});
+  ref_segment_offset.assign(tree.points().size() + 1, 0);
+  for (const auto& s : ref_segments)
+    for (auto i : s) ++ref_segment_offset[i + 1];
+  for (size_t i = 1; i < ref_segment_offset.size(); ++i) ref_segment_offset[i] += ref_segment_offset[i - 1];
+  ref_segment_of_point.resize(ref_segment_offset.back());
+  fill.assign(ref_segment_offset.begin(), ref_segment_offset.end() - 1);
+  for (std::uint32_t si = 0; si < ref_segments.size(); ++si)
+    for (auto i : ref_segments[si]) ref_segment_of_point[fill[i]++] = si;
+  for (Vertex v : mesh.vertices()) segment_hint[v] = UINT32_MAX;
   reference_stale = false;
 }
 
-double Remesher::Impl::reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const {
-  geometry::TriangleTree::ClosestHit hit;
-  if (*hint_triangle != UINT32_MAX && *hint_triangle < tree.triangles().size()) {
-    geometry::TriangleTree::ClosestHit hint;
-    hint.triangle = *hint_triangle;
-    hit = tree.closest_point(p, hint);
-  } else {
-    hit = tree.closest_point(p);
+// Vertices move by a fraction of an edge per iteration, so their closest reference point is
+// near the previous one: walk from the hint triangle over the triangles around its corners
+// until no neighbour is closer (a handful of triangle tests instead of a tree descent).
+// Without a hint, or when the walk does not settle, the AABB tree answers exactly.
+geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Point& p, std::uint32_t hint) const {
+  const auto& tris = tree.triangles();
+  const auto& pts = tree.points();
+  if (hint == UINT32_MAX || hint >= tris.size()) return tree.closest_point(p);
+  geometry::TriangleTree::ClosestHit best;
+  auto test = [&](std::uint32_t ti) {
+    const auto& t = tris[ti];
+    double bary[3];
+    Point q = geometry::closest_point_on_triangle(p, pts[t[0]], pts[t[1]], pts[t[2]], bary);
+    Vec3 d = q - p;
+    double d2 = glm::dot(d, d);
+    if (d2 < best.distance2) {
+      best.distance2 = d2;
+      best.point = q;
+      best.triangle = ti;
+      best.bary[0] = bary[0];
+      best.bary[1] = bary[1];
+      best.bary[2] = bary[2];
+      return true;
+    }
+    return false;
+  };
+  best.distance2 = std::numeric_limits<double>::infinity();
+  test(hint);
+  for (int step = 0; step < 8; ++step) {
+    std::uint32_t centre = best.triangle;
+    bool improved = false;
+    for (auto corner : tris[centre])
+      for (std::uint32_t k = ref_fan_offset[corner]; k < ref_fan_offset[corner + 1]; ++k)
+        if (ref_fan[k] != centre) improved |= test(ref_fan[k]);
+    if (!improved) return best;
   }
+  return tree.closest_point(p, best);
+}
+
+double Remesher::Impl::reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const {
+  geometry::TriangleTree::ClosestHit hit = closest_on_reference(p, *hint_triangle);
   *hint_triangle = hit.triangle;
   const auto& t = tree.triangles()[hit.triangle];
   return hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
 }
 
 void Remesher::Impl::project(Vertex v) {
-  geometry::TriangleTree::ClosestHit hit;
-  std::uint32_t hint = ref_hint[v];
-  if (hint != UINT32_MAX && hint < tree.triangles().size()) {
-    geometry::TriangleTree::ClosestHit h;
-    h.triangle = hint;
-    hit = tree.closest_point(mesh.position(v), h);
-  } else {
-    hit = tree.closest_point(mesh.position(v));
-  }
+  geometry::TriangleTree::ClosestHit hit = closest_on_reference(mesh.position(v), ref_hint[v]);
   ref_hint[v] = hit.triangle;
   const auto& t = tree.triangles()[hit.triangle];
-  // Feature vertices keep sliding along their line; pulling them onto the nearest surface
-  // point would let them drift across the sharp edge.
-  if (vclass[v] == kFree) mesh.position(v) = hit.point;
+  // Feature vertices go onto the nearest reference feature line instead: the nearest surface
+  // point of a vertex beside a sharp edge lies on one of its faces, off the edge.
+  if (vclass[v] == kFree)
+    mesh.position(v) = hit.point;
+  else
+    project_onto_feature_line(v);
   if (vclass[v] == kFree || !opt.adaptive)
     sizing[v] = hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
+}
+
+namespace {
+Point closest_on_segment(const Point& p, const Point& a, const Point& b) {
+  Vec3 d = b - a;
+  double l2 = glm::dot(d, d);
+  double t = l2 > 0 ? std::clamp(glm::dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return a + t * d;
+}
+}  // namespace
+
+// Like the triangle walk: from the hint segment over the segments sharing an endpoint until
+// none is closer; without a hint, every reference feature segment is tried once.
+void Remesher::Impl::project_onto_feature_line(Vertex v) {
+  if (ref_segments.empty()) return;
+  const auto& pts = tree.points();
+  const Point p = mesh.position(v);
+  std::uint32_t best = segment_hint[v];
+  double best_d2 = std::numeric_limits<double>::infinity();
+  Point best_q = p;
+  auto test = [&](std::uint32_t si) {
+    Point q = closest_on_segment(p, pts[ref_segments[si][0]], pts[ref_segments[si][1]]);
+    double d2 = glm::dot(q - p, q - p);
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best_q = q;
+      best = si;
+      return true;
+    }
+    return false;
+  };
+  if (best == UINT32_MAX || best >= ref_segments.size()) {
+    for (std::uint32_t si = 0; si < ref_segments.size(); ++si) test(si);
+  } else {
+    test(best);
+    for (int step = 0; step < 16; ++step) {
+      std::uint32_t centre = best;
+      bool improved = false;
+      for (auto end : ref_segments[centre])
+        for (std::uint32_t k = ref_segment_offset[end]; k < ref_segment_offset[end + 1]; ++k)
+          improved |= test(ref_segment_of_point[k]);
+      if (!improved) break;
+    }
+  }
+  segment_hint[v] = best;
+  mesh.position(v) = best_q;
 }
 
 }  // namespace adasculpt::remesh

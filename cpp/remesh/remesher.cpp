@@ -95,7 +95,9 @@ IterationStats Remesher::iterate() {
     m.scope[v] = kActive;
     m.scope_vertices.push_back(v);
   }
+  m.whole_mesh = true;
   IterationStats stats = m.run_iteration(m.opt.projection);
+  m.whole_mesh = false;
   for (Vertex v : m.mesh.vertices()) m.scope[v] = kOutside;
   return stats;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Internal state of a Remesher, shared by the pass files (split/collapse, flip, relaxation,
 // reference). Not part of the public API.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,8 @@ enum Scope : std::uint8_t {
   kHeld = 2,     // on the border of a region: keeps its position and stays
 };
 
+double min_angle_cosine(const Point& a, const Point& b, const Point& c);
+
 struct Remesher::Impl {
   Impl(SurfaceMesh& m, const RemeshOptions& o);
 
@@ -38,7 +41,14 @@ struct Remesher::Impl {
   // its sizing per reference point, for projection and for the sizing of new vertices.
   geometry::TriangleTree tree;
   std::vector<double> ref_sizing;  // per tree point
+  // Triangles around each reference point (CSR), for the local projection walk.
+  std::vector<std::uint32_t> ref_fan_offset, ref_fan;
+  // Feature and boundary edges of the reference (pairs of tree points) and, per point, the
+  // segments that meet there (CSR): feature vertices are projected onto these lines.
+  std::vector<std::array<std::uint32_t, 2>> ref_segments;
+  std::vector<std::uint32_t> ref_segment_offset, ref_segment_of_point;
   bool has_reference = false;
+  bool whole_mesh = false;  // the scope is every vertex: iterate edges directly
   bool reference_stale = false;
 
   // Per-element state kept on the mesh so it follows splits, collapses and compaction.
@@ -46,6 +56,7 @@ struct Remesher::Impl {
   VertexProperty<std::uint8_t> vclass;
   VertexProperty<std::uint8_t> scope;
   VertexProperty<std::uint32_t> ref_hint;  // last reference triangle a vertex projected to
+  VertexProperty<std::uint32_t> segment_hint;  // last reference feature segment (feature vertices)
   EdgeProperty<std::uint8_t> feature;      // feature or boundary edge
 
   // Scratch buffers, reused so iterations do not allocate once warmed up.
@@ -62,7 +73,9 @@ struct Remesher::Impl {
   void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
+  geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint) const;
   void project(Vertex v);
+  void project_onto_feature_line(Vertex v);
 
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
   void gather_scope_edges();

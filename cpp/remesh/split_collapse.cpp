@@ -20,15 +20,38 @@ double squared_length(const SurfaceMesh& m, Edge e) {
   return glm::dot(d, d);
 }
 
-double min_angle(const Point& a, const Point& b, const Point& c) {
-  double ang[3];
-  geometry::triangle_angles(a, b, c, ang);
-  return std::min({ang[0], ang[1], ang[2]});
+}  // namespace
+
+// Cosine of the smallest angle of a triangle (1 for a degenerate one). Ordering triangles by
+// it is ordering by smallest angle, without trigonometric calls.
+double min_angle_cosine(const Point& a, const Point& b, const Point& c) {
+  double la = glm::dot(b - c, b - c), lb = glm::dot(c - a, c - a), lc = glm::dot(a - b, a - b);
+  // The smallest angle is opposite the shortest edge.
+  double s = la, p = lb, q = lc;
+  if (lb < s) {
+    s = lb;
+    p = la;
+    q = lc;
+  }
+  if (lc < s) {
+    s = lc;
+    p = la;
+    q = lb;
+  }
+  double denom = 2.0 * std::sqrt(p * q);
+  if (!(denom > 0)) return 1.0;
+  return std::clamp((p + q - s) / denom, -1.0, 1.0);
 }
+
+namespace {
 }  // namespace
 
 void Remesher::Impl::gather_scope_edges() {
   scope_edges.clear();
+  if (whole_mesh) {
+    for (Edge e : mesh.edges()) scope_edges.push_back(e);
+    return;
+  }
   for (Vertex v : scope_vertices) {
     if (mesh.is_deleted(v)) continue;
     for (Halfedge h : mesh.halfedges(v)) {
@@ -45,6 +68,7 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
   const double size = 0.5 * (sizing[a] + sizing[b]);
   const std::uint8_t was_feature = feature[e];
   const std::uint32_t hint = ref_hint[a];
+  const std::uint32_t seg_hint = segment_hint[vclass[a] != kFree ? a : b];
   Vertex v = mesh.split(e, p);
   // The old edge now runs a -> v; the new edge v -> b inherits its feature flag.
   Halfedge vb = mesh.find_halfedge(v, b);
@@ -52,6 +76,7 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
   vclass[v] = was_feature ? kFeatureLine : kFree;
   scope[v] = kActive;
   ref_hint[v] = hint;
+  segment_hint[v] = seg_hint;
   sizing[v] = size;
   if (has_reference && !reference_stale) {
     std::uint32_t h = hint;
@@ -133,18 +158,19 @@ bool Remesher::Impl::collapse_allowed(Halfedge h) const {
   return true;
 }
 
-// The smallest angle among the triangles that collapsing h would reshape.
+// The smallest angle among the triangles that collapsing h would reshape, as minus its cosine
+// (larger is better).
 double Remesher::Impl::collapse_quality(Halfedge h) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   const Point& p1 = mesh.position(v1);
-  double worst = M_PI;
+  double worst = -1.0;
   for (Halfedge out : mesh.halfedges(v0)) {
     if (mesh.is_boundary(out)) continue;
     Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
     if (w == v1 || w2 == v1) continue;
-    worst = std::min(worst, min_angle(p1, mesh.position(w), mesh.position(w2)));
+    worst = std::max(worst, min_angle_cosine(p1, mesh.position(w), mesh.position(w2)));
   }
-  return worst;
+  return -worst;
 }
 
 size_t Remesher::Impl::collapse_short_edges() {
