@@ -193,8 +193,9 @@ export async function createSculptApp(container, options = {}) {
         faces: quality.faces ?? 0,
         minAngle: quality.min_angle_deg ?? null,
         meanMinAngle: quality.mean_min_angle_deg ?? null,
-        lastFrameMs: (t.total ?? 0) + frame.copyMs + frame.renderMs,
+        lastFrameMs: (t.total ?? 0) + (t.buffers ?? 0) + frame.copyMs + frame.renderMs,
         coreMs: t.total ?? 0,
+        buffersMs: t.buffers ?? 0,
         phasesMs: { ...t },
         uploadMs: frame.copyMs,
         renderMs: frame.renderMs,
@@ -325,7 +326,8 @@ export async function createSculptApp(container, options = {}) {
     }
     if (stats && grabbing && now - statsShownAt > 100) {
       statsShownAt = now;
-      stats.update({ timings: frame.core, uploadMs: frame.copyMs + frame.renderMs, vertices: frame.vertices, faces: frame.faces });
+      stats.update({ timings: frame.core, uploadMs: (frame.core?.buffers ?? 0) + frame.copyMs + frame.renderMs,
+        vertices: frame.vertices, faces: frame.faces });
     }
   }
   raf = requestAnimationFrame(loop);

@@ -1,5 +1,6 @@
 // The numbers in the corner: fps while something animates, the last frame split into the core's
-// phases plus the upload (copy of dirty ranges + render call), and the mesh figures.
+// phases plus the upload (render-buffer update in wasm, copy of the dirty ranges, render call),
+// and the mesh figures.
 export function createStatsOverlay(parent) {
   const el = document.createElement('div');
   el.className = 'adasculpt-stats';

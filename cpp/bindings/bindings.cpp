@@ -278,6 +278,7 @@ class SessionHandle {
     ms.set("deform", t.deform_ms);
     ms.set("remesh", t.remesh_ms);
     ms.set("total", t.total_ms);
+    ms.set("buffers", buffers_ms_);
     r.set("timings", ms);
     return r;
   }
@@ -290,6 +291,7 @@ class SessionHandle {
   // Brings the render buffers up to date with what the session changed.
   void sync(bool everything) {
     if (!session_.has_mesh()) return;
+    const double t0 = emscripten_get_now();
     const sculpt::ChangeSet& c = session_.changes();
     if (everything) {
       buffers_.rebuild(session_.mesh());
@@ -297,10 +299,12 @@ class SessionHandle {
       buffers_.update(session_.mesh(), c);
     }
     session_.clear_changes();
+    buffers_ms_ = emscripten_get_now() - t0;
   }
 
   sculpt::Session session_;
   sculpt::RenderBuffers buffers_;
+  double buffers_ms_ = 0;  // time of the last render-buffer update (part of the frame, after the core)
 };
 
 EMSCRIPTEN_BINDINGS(adasculpt) {

@@ -118,10 +118,13 @@ bool RenderBuffers::write_face(const SurfaceMesh& m, Face f) {
   std::uint32_t t[3];
   current_triple(m, f, t);
   if (out[0] == t[0] && out[1] == t[1] && out[2] == t[2]) return false;
-  // The vertices that lost this face and those that gained it both need new normals.
+  // The vertices that lost this face and those that gained it both need new normals (an empty
+  // slot, all zeros, had no vertices).
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
+  const bool was_empty = (out[0] | out[1] | out[2]) == 0;
   for (int i = 0; i < 3; ++i) {
-    if (out[i] < nv && out[i] < vertex_count_ && !m.is_deleted(Vertex(out[i]))) mark_normal(Vertex(out[i]));
+    if (!was_empty && out[i] < nv && out[i] < vertex_count_ && !m.is_deleted(Vertex(out[i])))
+      mark_normal(Vertex(out[i]));
     if (!m.is_deleted(f)) mark_normal(Vertex(t[i]));
     out[i] = t[i];
   }
@@ -168,10 +171,21 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   }
   normal_queue_.clear();
 
+  // Faces: every face whose triangle changed is incident to a touched live vertex (the contract
+  // in the header), is a new slot, or was deleted. So: the faces around touched vertices, the new
+  // slots, and one byte per slot for the deletion flags; no walk over the whole connectivity.
+  const bool faces_may_change = topology_changed || nf != face_count_;
+  std::uint32_t fb = 0, fe = 0;
+  auto face = [&](Face f) {
+    if (write_face(m, f)) extend(fb, fe, f.idx, f.idx + 1);
+  };
   auto moved = [&](Vertex v) {
     write_position(m, v);
     mark_normal(v);
     for (Vertex w : m.vertices(v)) mark_normal(w);
+    if (faces_may_change) {
+      for (Face f : m.faces(v)) face(f);
+    }
   };
   for (size_t i = 0; i < n_touched; ++i) {
     Vertex v = touched[i];
@@ -180,15 +194,11 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   for (std::uint32_t i = vertex_count_; i < nv; ++i) {
     if (!m.is_deleted(Vertex(i))) moved(Vertex(i));
   }
-
-  // Faces: a collapse deletes faces that no live vertex reaches any more, and a flip changes
-  // faces without moving a vertex, so the touched set cannot find every changed face. One
-  // compare per face slot finds them all (a few hundred microseconds for 100k faces) and keeps
-  // the upload to the slots that really changed.
-  if (topology_changed || nf != face_count_) {
-    std::uint32_t fb = 0, fe = 0;
-    for (std::uint32_t i = 0; i < nf; ++i) {
-      if (write_face(m, Face(i))) extend(fb, fe, i, i + 1);
+  if (faces_may_change) {
+    for (std::uint32_t i = face_count_; i < nf; ++i) face(Face(i));
+    for (std::uint32_t i = 0; i < face_count_; ++i) {
+      const std::uint32_t* t = &indices_[3 * size_t(i)];
+      if ((t[0] | t[1] | t[2]) != 0 && m.is_deleted(Face(i))) face(Face(i));
     }
     last_.face_begin = fb;
     last_.face_end = fe;

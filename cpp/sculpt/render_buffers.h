@@ -6,9 +6,15 @@
 //
 // Capacity grows geometrically, so pointers (and typed-array views in the browser) stay valid
 // until an update reports `reallocated`. After warm-up, update() allocates nothing: it rewrites
-// the touched vertices, the normals of their one-ring, and (when the topology changed) the face
-// slots whose triangle differs from what is stored, and reports the dirty ranges so the renderer
-// uploads only those.
+// the touched vertices, the normals of their one-ring, and (when the topology changed) the faces
+// around touched vertices, the new face slots and the deleted ones, and reports the dirty ranges
+// so the renderer uploads only those. Work is proportional to the touched set, plus one byte read
+// per face slot (deletion flags) in frames that changed the topology.
+//
+// Contract for incremental updates: every live face whose triangle changed has a touched live
+// vertex (the old or the new triangle's). The session's region satisfies it: the remesher only
+// edits edges with both ends in the region (a flip's old edge ends, a collapse's survivor, a
+// split's new vertex), and new vertices join the region.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,9 +45,9 @@ class RenderBuffers {
 
   // Rewrites everything from the mesh.
   const RenderChanges& rebuild(const mesh::SurfaceMesh& m);
-  // Incremental update. `touched` are vertices whose positions may have changed (may contain
-  // duplicates and deleted vertices); topology_changed says faces were added, removed or flipped;
-  // everything forces a rebuild. Returns this update's changes (also merged into pending()).
+  // Incremental update. `touched` are vertices whose positions or incident faces may have changed
+  // (may contain duplicates and deleted vertices; see the contract above); topology_changed says
+  // faces were added, removed or flipped; everything forces a rebuild. Returns this update's changes (also merged into pending()).
   const RenderChanges& update(const mesh::SurfaceMesh& m, const mesh::Vertex* touched, size_t n_touched,
                               bool topology_changed, bool everything);
   // The same from a sculpt::ChangeSet (a template so this header needs no Session).

@@ -109,7 +109,7 @@ TEST(RenderBuffers, SplitFlipCollapseWithGarbageMatchRebuild) {
   EXPECT_EQ(c1.face_count, m.faces_size());
   expect_matches_rebuild(m, rb, "after split");
 
-  // Flip: no vertex moves, the face scan must still find it.
+  // Flip: no vertex moves; the old edge's ends are touched (the contract), their rings hold both faces.
   Edge flip_edge;
   for (Edge f : m.edges())
     if (m.is_flip_ok(f)) {
@@ -117,9 +117,10 @@ TEST(RenderBuffers, SplitFlipCollapseWithGarbageMatchRebuild) {
       break;
     }
   ASSERT_TRUE(flip_edge.is_valid());
+  Vertex fa = m.vertex(flip_edge, 0), fb = m.vertex(flip_edge, 1);
   m.flip(flip_edge);
   std::vector<std::uint32_t> before(rb.indices(), rb.indices() + 3 * m.faces_size());
-  const RenderChanges& c2 = rb.update(m, Changes{true, false, {}});
+  const RenderChanges& c2 = rb.update(m, Changes{true, false, {fa, fb}});
   EXPECT_TRUE(c2.indices_changed);
   int changed_slots = 0;
   for (std::uint32_t f = 0; f < m.faces_size(); ++f) {
@@ -138,10 +139,10 @@ TEST(RenderBuffers, SplitFlipCollapseWithGarbageMatchRebuild) {
       break;
     }
   ASSERT_TRUE(h.is_valid());
-  Vertex gone = m.from_vertex(h);
+  Vertex gone = m.from_vertex(h), survivor = m.to_vertex(h);
   m.collapse(h);
   EXPECT_TRUE(m.is_deleted(gone));
-  rb.update(m, Changes{true, false, {gone}});
+  rb.update(m, Changes{true, false, {gone, survivor}});
   expect_matches_rebuild(m, rb, "after collapse");
   size_t zero_faces = 0;
   for (std::uint32_t f = 0; f < m.faces_size(); ++f) {
@@ -190,11 +191,13 @@ TEST(RenderBuffers, RandomEditsAlwaysMatchRebuildAndRangesCoverChanges) {
     } else if (op == 2) {
       Edge e(rng() % m.edges_size());
       if (m.is_deleted(e) || !m.is_flip_ok(e)) continue;
+      ch.touched_vertices = {m.vertex(e, 0), m.vertex(e, 1)};
       m.flip(e);
       ch.topology_changed = true;
     } else {
       Halfedge h(rng() % m.halfedges_size());
       if (m.is_deleted(h) || !m.is_collapse_ok(h)) continue;
+      ch.touched_vertices = {m.from_vertex(h), m.to_vertex(h)};
       m.collapse(h);
       ch.topology_changed = true;
     }
@@ -244,7 +247,7 @@ TEST(RenderBuffers, PendingAccumulatesUntilTaken) {
   EXPECT_EQ(q.vertex_count, m.vertices_size());
 }
 
-// Not a timing test (never fails on speed): prints the cost of the per-frame face scan.
+// Not a timing test (never fails on speed): prints the cost of an update with and without topology.
 TEST(RenderBuffers, PrintsUpdateCostOn100kFaces) {
   SurfaceMesh m = make_icosphere(6);  // 81920 faces
   RenderBuffers rb;
@@ -259,7 +262,7 @@ TEST(RenderBuffers, PrintsUpdateCostOn100kFaces) {
       rb.update(m, Changes{topology, false, touched});
     }
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / frames;
-    std::printf("[ info ] RenderBuffers::update, %zu faces, 2000 touched vertices, face scan %s: %.3f ms/frame\n",
+    std::printf("[ info ] RenderBuffers::update, %zu faces, 2000 touched vertices, topology %s: %.3f ms/frame\n",
                 m.faces_size(), topology ? "on" : "off", ms);
   }
   SUCCEED();
