@@ -161,14 +161,24 @@ void Remesher::Impl::project_vertices() {
     if (!mesh.is_deleted(v) && movable(v)) project(v);
 }
 
-// Removes zero-area and needle triangles left by the input: collapse their shortest edge
-// when it is tiny, otherwise flip their longest edge (a "cap" has no short edge).
-size_t Remesher::Impl::fix_degenerate_faces() {
-  constexpr double kDegenerateAngle = 1.0 * M_PI / 180.0;
+// Removes triangles with an angle below `angle_deg` (zero-area and needle triangles of the
+// input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
+// when it is short, otherwise flip their longest edge (a "cap" has no short edge).
+size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
+  const double kDegenerateAngle = angle_deg * M_PI / 180.0;
   size_t fixed = 0;
   for (int pass = 0; pass < 3; ++pass) {
     size_t fixed_this_pass = 0;
-    for (mesh::Face f : mesh.faces()) {
+    faces_scratch.clear();
+    if (whole_mesh) {
+      for (mesh::Face f : mesh.faces()) faces_scratch.push_back(f);
+    } else {
+      for (Vertex v : scope_vertices)
+        if (!mesh.is_deleted(v) && scope[v] == kActive)
+          for (mesh::Face f : mesh.faces(v)) faces_scratch.push_back(f);
+    }
+    for (mesh::Face f : faces_scratch) {
+      if (mesh.is_deleted(f)) continue;
       Halfedge hs[3] = {mesh.halfedge(f), mesh.next(mesh.halfedge(f)), mesh.prev(mesh.halfedge(f))};
       Point p[3];
       for (int i = 0; i < 3; ++i) p[i] = mesh.position(mesh.to_vertex(hs[i]));

@@ -14,6 +14,10 @@ namespace {
 // paper, which flips for valence only): measured on the shared meshes it lifts the minimum
 // angle by 2-5 degrees at no visible cost in valence regularity.
 constexpr double kPoorAngleDeg = 30.0;
+// Input triangles below this angle are degenerate: removed before the first iteration.
+constexpr double kDegenerateAngleDeg = 1.0;
+// Triangles below this angle after an iteration get a dedicated collapse or flip.
+constexpr double kSliverAngleDeg = 12.0;
 }  // namespace
 
 double bounding_box_diagonal(const SurfaceMesh& mesh) { return geometry::bounding_box_diagonal(mesh); }
@@ -77,6 +81,7 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   stats.flips += flip_for_angles(kPoorAngleDeg * M_PI / 180.0);
   relax_vertices();
   if (do_project && has_reference) project_vertices();
+  fix_bad_faces(kSliverAngleDeg);
   return stats;
 }
 
@@ -88,7 +93,9 @@ IterationStats Remesher::iterate() {
     m.build_reference();
     m.scope_vertices.clear();
     for (Vertex v : m.mesh.vertices()) m.scope_vertices.push_back(v);
-    m.fix_degenerate_faces();
+    m.whole_mesh = true;
+    m.fix_bad_faces(kDegenerateAngleDeg);
+    m.whole_mesh = false;
   }
   m.scope_vertices.clear();
   for (Vertex v : m.mesh.vertices()) {

@@ -62,6 +62,7 @@ struct Remesher::Impl {
   // Scratch buffers, reused so iterations do not allocate once warmed up.
   std::vector<Vertex> scope_vertices;
   std::vector<Edge> scope_edges;
+  std::vector<mesh::Face> faces_scratch;
   std::vector<std::pair<double, Edge>> candidates;
   std::vector<int> valence;
   std::vector<Point> new_positions;
@@ -85,7 +86,7 @@ struct Remesher::Impl {
   size_t flip_for_angles(double poor_angle);
   void relax_vertices();
   void project_vertices();
-  size_t fix_degenerate_faces();
+  size_t fix_bad_faces(double angle_deg);
 
   // ---- helpers
   double target_length(Edge e) const {
@@ -97,6 +98,8 @@ struct Remesher::Impl {
   bool movable(Vertex v) const { return scope[v] == kActive && vclass[v] != kCorner; }
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;
+  bool collapse_topology_ok(Halfedge h) const;
+  bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move) const;
   double collapse_quality(Halfedge h) const;
   bool flip_geometry_ok(Edge e, bool require_flat) const;
   Vertex split_edge(Edge e, const Point& p);

@@ -14,6 +14,8 @@ namespace {
 constexpr double kSplitFactor = 4.0 / 3.0;
 constexpr double kCollapseFactor = 4.0 / 5.0;
 constexpr int kMaxSplitPasses = 10;
+// Squared length / squared collapse threshold below which an edge may collapse to its midpoint.
+constexpr double kMidpointCollapseRatio = 0.25;
 
 double squared_length(const SurfaceMesh& m, Edge e) {
   Vec3 d = m.position(m.vertex(e, 0)) - m.position(m.vertex(e, 1));
@@ -111,8 +113,9 @@ size_t Remesher::Impl::split_long_edges() {
   return splits;
 }
 
-// Topological and geometric admissibility of collapsing h: from_vertex(h) -> to_vertex(h).
-bool Remesher::Impl::collapse_allowed(Halfedge h) const {
+// Whether collapsing h (from_vertex(h) into to_vertex(h)) is allowed by the scope, the
+// feature rules and the mesh topology (link condition).
+bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
   Halfedge o = mesh.opposite(h);
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   if (scope[v0] != kActive || scope[v1] == kOutside) return false;
@@ -129,33 +132,46 @@ bool Remesher::Impl::collapse_allowed(Halfedge h) const {
     return false;
   if (!mesh.is_boundary(o) && is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o))))
     return false;
-  if (!mesh.is_collapse_ok(h)) return false;
+  return mesh.is_collapse_ok(h);
+}
 
-  const Point& p0 = mesh.position(v0);
-  const Point& p1 = mesh.position(v1);
+// Geometric admissibility of merging the edge of h into one vertex at `target`: every
+// surviving triangle around `moved` (and around the other end too when it moves as well) keeps
+// its orientation within 60 degrees and a non-zero area, and no edge grows beyond the split
+// threshold (the collapse would be undone at once).
+bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move) const {
+  Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  Halfedge o = mesh.opposite(h);
   Vertex x = mesh.is_boundary(h) ? Vertex() : mesh.to_vertex(mesh.next(h));
   Vertex y = mesh.is_boundary(o) ? Vertex() : mesh.to_vertex(mesh.next(o));
-  for (Halfedge out : mesh.halfedges(v0)) {
-    Vertex w = mesh.to_vertex(out);
-    if (w == v1) continue;
-    // No new edge longer than the split threshold: the collapse would be undone next time.
-    double limit = kSplitFactor * std::min(sizing[v1], sizing[w]);
-    Vec3 d = mesh.position(w) - p1;
-    if (w != x && w != y && glm::dot(d, d) > limit * limit) return false;
-    // Each surviving triangle (v0, w, w2) becomes (v1, w, w2): no flip, no degeneracy.
-    if (mesh.is_boundary(out)) continue;
-    Vertex w2 = mesh.to_vertex(mesh.next(out));
-    if (w2 == v1) continue;
-    const Point& pw = mesh.position(w);
-    const Point& pw2 = mesh.position(w2);
-    Vec3 n_old = glm::cross(pw - p0, pw2 - p0);
-    Vec3 n_new = glm::cross(pw - p1, pw2 - p1);
-    double len_new = glm::length(n_new), len_old = glm::length(n_old);
-    if (len_new <= 1e-14 * glm::dot(pw - p1, pw - p1)) return false;
-    // Old degenerate triangles have no orientation to keep; otherwise stay within 60 degrees.
-    if (len_old > 0 && glm::dot(n_old, n_new) < 0.5 * len_old * len_new) return false;
-  }
-  return true;
+  const double size = both_ends_move ? 0.5 * (sizing[v0] + sizing[v1]) : sizing[v1];
+  auto ring_ok = [&](Vertex centre, Vertex other) {
+    const Point& pc = mesh.position(centre);
+    for (Halfedge out : mesh.halfedges(centre)) {
+      Vertex w = mesh.to_vertex(out);
+      if (w == other) continue;
+      double limit = kSplitFactor * std::min(size, sizing[w]);
+      Vec3 d = mesh.position(w) - target;
+      if (w != x && w != y && glm::dot(d, d) > limit * limit) return false;
+      if (mesh.is_boundary(out)) continue;
+      Vertex w2 = mesh.to_vertex(mesh.next(out));
+      if (w2 == other) continue;
+      const Point& pw = mesh.position(w);
+      const Point& pw2 = mesh.position(w2);
+      Vec3 n_old = glm::cross(pw - pc, pw2 - pc);
+      Vec3 n_new = glm::cross(pw - target, pw2 - target);
+      double len_new = glm::length(n_new), len_old = glm::length(n_old);
+      if (len_new <= 1e-14 * glm::dot(pw - target, pw - target)) return false;
+      // Old degenerate triangles have no orientation to keep.
+      if (len_old > 0 && glm::dot(n_old, n_new) < 0.5 * len_old * len_new) return false;
+    }
+    return true;
+  };
+  return ring_ok(v0, v1) && (!both_ends_move || ring_ok(v1, v0));
+}
+
+bool Remesher::Impl::collapse_allowed(Halfedge h) const {
+  return collapse_topology_ok(h) && collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false);
 }
 
 // The smallest angle among the triangles that collapsing h would reshape, as minus its cosine
@@ -192,9 +208,21 @@ size_t Remesher::Impl::collapse_short_edges() {
     if (squared_length(mesh, e) >= limit * limit) continue;  // neighbours changed it
     Halfedge h0 = mesh.halfedge(e, 0), h1 = mesh.halfedge(e, 1);
     bool ok0 = collapse_allowed(h0), ok1 = collapse_allowed(h1);
-    if (!ok0 && !ok1) continue;
     Halfedge h = ok0 ? h0 : h1;
     if (ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0)) h = h1;
+    if (!ok0 && !ok1) {
+      // Neither end can take the other's place (typically on a thin or strongly curved part):
+      // meeting in the middle often can, and leaves no sliver behind.
+      // Only for edges far below the threshold: elsewhere endpoint collapses grade better.
+      if (c.first > kMidpointCollapseRatio) continue;
+      Vertex a = mesh.from_vertex(h0), b = mesh.to_vertex(h0);
+      if (!movable(a) || !movable(b) || vclass[a] != kFree || vclass[b] != kFree) continue;
+      Point mid = 0.5 * (mesh.position(a) + mesh.position(b));
+      if (!collapse_topology_ok(h0) || !collapse_geometry_ok(h0, mid, true)) continue;
+      h = h0;
+      sizing[b] = 0.5 * (sizing[a] + sizing[b]);
+      mesh.position(b) = mid;
+    }
     // The mesh keeps the edges of prev(h) and next(opposite(h)); carry feature flags over
     // from the edges that disappear with the two triangles.
     Halfedge o = mesh.opposite(h);

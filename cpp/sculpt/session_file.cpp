@@ -1,0 +1,222 @@
+#include "sculpt/session_file.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace adasculpt::sculpt {
+
+namespace {
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& context, const std::string& field, const std::string& what) {
+  throw std::invalid_argument(context + "'" + field + "' " + what);
+}
+
+double positive_number(const json& j, const std::string& context, const std::string& field, bool allow_zero = false) {
+  if (!j.is_number()) fail(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
+    fail(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
+  return v;
+}
+
+int positive_int(const json& j, const std::string& context, const std::string& field) {
+  if (!j.is_number_integer() && !(j.is_number() && std::floor(j.get<double>()) == j.get<double>()))
+    fail(context, field, "must be a positive integer");
+  const double v = j.get<double>();
+  if (!(v >= 1) || v > 1e6) fail(context, field, "must be a positive integer (at most 1000000)");
+  return static_cast<int>(v);
+}
+
+Vec3 vec3(const json& j, const std::string& context, const std::string& field) {
+  if (!j.is_array() || j.size() != 3) fail(context, field, "must be an array of 3 numbers");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) fail(context, field, "must be an array of 3 numbers");
+    v[i] = j[i].get<double>();
+  }
+  return v;
+}
+
+LengthSetting length(const json& j, const std::string& context, const std::string& field) {
+  const std::string what = "must be a positive number or a percentage string like \"0.5%\"";
+  LengthSetting s;
+  if (j.is_number()) {
+    s.value = j.get<double>();
+  } else if (j.is_string()) {
+    const std::string t = j.get<std::string>();
+    if (t.size() < 2 || t.back() != '%') fail(context, field, what);
+    const std::string num = t.substr(0, t.size() - 1);
+    char* end = nullptr;
+    s.value = std::strtod(num.c_str(), &end);
+    if (end == num.c_str() || *end != '\0') fail(context, field, what);
+    s.percent = true;
+  } else {
+    fail(context, field, what);
+  }
+  if (!std::isfinite(s.value) || s.value <= 0) fail(context, field, what);
+  return s;
+}
+
+void check_keys(const json& j, const std::string& context, std::initializer_list<const char*> allowed) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || it.key() == a;
+    if (!ok) throw std::invalid_argument(context + "unknown field '" + it.key() + "'");
+  }
+}
+
+GrabStep parse_grab(const json& g, const std::string& ctx) {
+  if (!g.is_object()) throw std::invalid_argument(ctx + "must be an object");
+  check_keys(g, ctx, {"center", "handle_radius", "roi_radius", "translate", "rotate", "scale", "substeps"});
+  GrabStep s;
+  for (const char* k : {"center", "handle_radius", "roi_radius"})
+    if (!g.contains(k)) fail(ctx, k, "is missing");
+  s.center = vec3(g["center"], ctx, "center");
+  s.handle_radius = positive_number(g["handle_radius"], ctx, "handle_radius", true);
+  s.roi_radius = positive_number(g["roi_radius"], ctx, "roi_radius");
+  if (g.contains("translate")) s.translate = vec3(g["translate"], ctx, "translate");
+  if (g.contains("rotate")) {
+    const json& r = g["rotate"];
+    if (!r.is_object()) fail(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
+    check_keys(r, ctx + "rotate: ", {"axis", "degrees"});
+    if (!r.contains("axis") || !r.contains("degrees"))
+      fail(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
+    s.axis = vec3(r["axis"], ctx, "rotate.axis");
+    if (!(glm::length(s.axis) > 0)) fail(ctx, "rotate.axis", "must not be the zero vector");
+    s.axis = glm::normalize(s.axis);
+    if (!r["degrees"].is_number() || !std::isfinite(r["degrees"].get<double>()))
+      fail(ctx, "rotate.degrees", "must be a number");
+    s.degrees = r["degrees"].get<double>();
+  }
+  if (g.contains("scale")) s.scale = positive_number(g["scale"], ctx, "scale");
+  if (g.contains("substeps")) s.substeps = positive_int(g["substeps"], ctx, "substeps");
+  return s;
+}
+}  // namespace
+
+SettingsPatch parse_settings(const json& s, const std::string& ctx) {
+  if (!s.is_object()) throw std::invalid_argument(ctx + "must be an object");
+  check_keys(s, ctx, {"epsilon", "min_length", "max_length", "features"});
+  SettingsPatch p;
+  if (s.contains("epsilon")) p.epsilon = length(s["epsilon"], ctx, "epsilon");
+  if (s.contains("min_length")) p.min_length = length(s["min_length"], ctx, "min_length");
+  if (s.contains("max_length")) p.max_length = length(s["max_length"], ctx, "max_length");
+  if (s.contains("features")) {
+    const json& f = s["features"];
+    if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0 || f.get<double>() > 180)
+      fail(ctx, "features", "must be an angle in degrees between 0 and 180");
+    p.features = f.get<double>();
+  }
+  return p;
+}
+
+json to_json(const SettingsPatch& s) {
+  json j = json::object();
+  auto put = [&](const char* k, const std::optional<LengthSetting>& v) {
+    if (!v) return;
+    if (v->percent) {
+      json num = v->value;
+      j[k] = num.dump() + "%";
+    } else {
+      j[k] = v->value;
+    }
+  };
+  put("epsilon", s.epsilon);
+  put("min_length", s.min_length);
+  put("max_length", s.max_length);
+  if (s.features) j["features"] = *s.features;
+  return j;
+}
+
+deform::HandleTransform GrabStep::total_at(double f) const {
+  deform::HandleTransform t;
+  t.translation = f * translate;
+  t.rotation = glm::angleAxis(glm::radians(f * degrees), axis);
+  t.scale = 1.0 + f * (scale - 1.0);
+  return t;
+}
+
+SessionFile parse_session_file(const json& j) {
+  if (!j.is_object()) throw std::invalid_argument("session file: must be a JSON object");
+  check_keys(j, "session file: ", {"version", "settings", "steps"});
+  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<long long>() != 1)
+    throw std::invalid_argument("session file: 'version' must be 1");
+  SessionFile f;
+  if (j.contains("settings")) f.settings = parse_settings(j["settings"]);
+  if (!j.contains("steps") || !j["steps"].is_array())
+    throw std::invalid_argument("session file: 'steps' must be an array");
+  int i = 0;
+  for (const json& s : j["steps"]) {
+    ++i;
+    const std::string at = "step " + std::to_string(i);
+    if (!s.is_object() || s.size() != 1)
+      throw std::invalid_argument(at + ": must be an object with one key: grab, remesh, undo or redo");
+    const std::string kind = s.begin().key();
+    const json& v = s.begin().value();
+    const std::string ctx = at + " (" + kind + "): ";
+    SessionStep step;
+    if (kind == "grab") {
+      step.kind = SessionStep::Kind::Grab;
+      step.grab = parse_grab(v, ctx);
+    } else if (kind == "remesh") {
+      step.kind = SessionStep::Kind::Remesh;
+      if (!v.is_object()) throw std::invalid_argument(ctx + "must be an object {\"iterations\": k}");
+      check_keys(v, ctx, {"iterations"});
+      if (!v.contains("iterations")) fail(ctx, "iterations", "is missing");
+      step.count = positive_int(v["iterations"], ctx, "iterations");
+    } else if (kind == "undo" || kind == "redo") {
+      step.kind = kind == "undo" ? SessionStep::Kind::Undo : SessionStep::Kind::Redo;
+      step.count = positive_int(v, ctx, kind);
+    } else {
+      throw std::invalid_argument(at + ": unknown step '" + kind + "' (expected grab, remesh, undo or redo)");
+    }
+    f.steps.push_back(step);
+  }
+  return f;
+}
+
+SessionFile parse_session_file(const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(std::string("session file: not valid JSON: ") + e.what());
+  }
+  return parse_session_file(j);
+}
+
+json to_json(const SessionFile& f) {
+  json steps = json::array();
+  for (const SessionStep& s : f.steps) {
+    switch (s.kind) {
+      case SessionStep::Kind::Grab: {
+        const GrabStep& g = s.grab;
+        json grab = {{"center", {g.center.x, g.center.y, g.center.z}},
+                     {"handle_radius", g.handle_radius},
+                     {"roi_radius", g.roi_radius},
+                     {"translate", {g.translate.x, g.translate.y, g.translate.z}},
+                     {"rotate", {{"axis", {g.axis.x, g.axis.y, g.axis.z}}, {"degrees", g.degrees}}},
+                     {"scale", g.scale},
+                     {"substeps", g.substeps}};
+        steps.push_back({{"grab", grab}});
+        break;
+      }
+      case SessionStep::Kind::Remesh:
+        steps.push_back({{"remesh", {{"iterations", s.count}}}});
+        break;
+      case SessionStep::Kind::Undo:
+        steps.push_back({{"undo", s.count}});
+        break;
+      case SessionStep::Kind::Redo:
+        steps.push_back({{"redo", s.count}});
+        break;
+    }
+  }
+  return {{"version", 1}, {"settings", to_json(f.settings)}, {"steps", steps}};
+}
+
+}  // namespace adasculpt::sculpt

@@ -1,0 +1,77 @@
+#pragma once
+// Session files: a replayable sculpting session, shared by the CLI (`adasculpt replay`), the wasm
+// module and the browser app.
+//
+//   {"version": 1,
+//    "settings": {"epsilon": 0.001 | "0.05%", "min_length": ..., "max_length": ..., "features": 45},
+//    "steps": [
+//      {"grab": {"center": [x,y,z], "handle_radius": r, "roi_radius": R,
+//                "translate": [dx,dy,dz], "rotate": {"axis": [ax,ay,az], "degrees": a},
+//                "scale": s, "substeps": n}},
+//      {"remesh": {"iterations": k}},
+//      {"undo": n}, {"redo": n}]}
+//
+// A grab picks the surface point closest to `center` and applies the total transform gradually
+// over `substeps` frames (frame i applies the fraction i/n of the translation, of the rotation
+// angle and of the scale change); translate, rotate, scale and substeps are optional (identity,
+// substeps 1). Lengths in settings are absolute or, as strings ending in '%', percent of the
+// bounding-box diagonal.
+//
+// Every validation error is a std::invalid_argument with one line naming the step and field:
+//   "step 3 (grab): 'roi_radius' must be a positive number".
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "deform/handle_transform.h"
+#include "mesh/types.h"
+
+namespace adasculpt::sculpt {
+
+// A length setting as written: absolute, or percent of the bounding-box diagonal.
+struct LengthSetting {
+  double value = 0;
+  bool percent = false;
+  double resolve(double diagonal) const { return percent ? value * 0.01 * diagonal : value; }
+};
+
+// The keys present in a "settings" object (absent keys stay empty).
+struct SettingsPatch {
+  std::optional<LengthSetting> epsilon, min_length, max_length;
+  std::optional<double> features;  // degrees, 0 = off
+};
+// Throws std::invalid_argument "<context>'epsilon' must be ..." (context e.g. "settings: ").
+SettingsPatch parse_settings(const nlohmann::json& s, const std::string& context = "settings: ");
+nlohmann::json to_json(const SettingsPatch& s);
+
+struct GrabStep {
+  Point center{0.0};
+  double handle_radius = 0, roi_radius = 0;
+  Vec3 translate{0.0};
+  Vec3 axis{0.0, 0.0, 1.0};
+  double degrees = 0;
+  double scale = 1;
+  int substeps = 1;
+  // The total transform after the fraction f in [0,1] of the grab.
+  deform::HandleTransform total_at(double f) const;
+};
+
+struct SessionStep {
+  enum class Kind { Grab, Remesh, Undo, Redo } kind = Kind::Grab;
+  GrabStep grab;  // Kind::Grab
+  int count = 1;  // remesh iterations, undo / redo count
+};
+
+struct SessionFile {
+  SettingsPatch settings;
+  std::vector<SessionStep> steps;
+};
+
+SessionFile parse_session_file(const nlohmann::json& j);
+// Parses JSON text first; a syntax error becomes std::invalid_argument too.
+SessionFile parse_session_file(const std::string& text);
+nlohmann::json to_json(const SessionFile& f);
+
+}  // namespace adasculpt::sculpt
