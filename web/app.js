@@ -21,7 +21,7 @@ import * as THREE from 'three';
 
 const DEFAULT_STATE = {
   epsilon: 0.05, minLength: 0.2, maxLength: 5, features: 0, iterations: 5,
-  handleRadius: 5, roiRadius: 20, shading: 'matcap', flat: false, wireframe: false,
+  handleRadius: 4, roiRadius: 15, shading: 'matcap', flat: false, wireframe: false,
 };
 
 export async function createSculptApp(container, options = {}) {
@@ -49,7 +49,8 @@ export async function createSculptApp(container, options = {}) {
   let disposed = false;
   let firstRenderMs = null;
   let quality = {};
-  const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0 };
+  const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0, dragged: false };
+  const frameLog = []; // per grab frame: core phases, buffer update, copy, render (for benchmarks)
 
   // ---- keeping three.js in step with the core
   function sync(changes) {
@@ -136,6 +137,7 @@ export async function createSculptApp(container, options = {}) {
         const t = toVec3(translate, 'translate');
         const a = toVec3(rotate.axis || [0, 0, 1], 'rotate.axis');
         sync(session.grabDrag(t.x, t.y, t.z, a.x, a.y, a.z, rotate.degrees || 0, scale));
+        frame.dragged = true;
         return { vertices: frame.vertices, faces: frame.faces, timings: frame.core };
       },
       end() {
@@ -211,6 +213,11 @@ export async function createSculptApp(container, options = {}) {
     async export(format = 'obj') {
       const bytes = session.exportMesh(format);
       return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+    },
+
+    // The grab frames since the last call (core, buffers, copy, render ms each), for benchmarks.
+    takeFrameLog() {
+      return frameLog.splice(0, frameLog.length);
     },
 
     // Axis-aligned bounds of the drawn mesh: {min: [x,y,z], max: [x,y,z]}.
@@ -323,6 +330,13 @@ export async function createSculptApp(container, options = {}) {
       frame.renderMs = performance.now() - r0;
       if (firstRenderMs === null && session.hasMesh()) firstRenderMs = performance.now();
       if (stats && grabbing) stats.tick(now);
+    }
+    if (frame.dragged) {
+      frame.dragged = false;
+      const t = frame.core || {};
+      if (frameLog.length >= 2000) frameLog.shift();
+      frameLog.push({ coreMs: t.total, buffersMs: t.buffers, copyMs: frame.copyMs, renderMs: frame.renderMs,
+        totalMs: t.total + t.buffers + frame.copyMs + frame.renderMs, phases: { ...t }, vertices: frame.vertices });
     }
     if (stats && grabbing && now - statsShownAt > 100) {
       statsShownAt = now;

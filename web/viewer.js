@@ -145,6 +145,7 @@ export function createViewer(root) {
       matcap.matcap.dispose();
       scene.background.dispose();
       renderer.dispose();
+      renderer.forceContextLoss(); // browsers keep only a few live WebGL contexts per page
       renderer.domElement.remove();
     },
   };
