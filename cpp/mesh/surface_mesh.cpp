@@ -289,12 +289,26 @@ bool SurfaceMesh::is_collapse_ok(Halfedge h) const {
   }
   if (x.is_valid() && x == y) return false;
 
-  // Link condition: the common neighbours of v0 and v1 are exactly x and y.
+  // Link condition: the common neighbours of v0 and v1 are exactly x and y. v1's ring is
+  // gathered once into a small buffer (valences are rarely above a dozen).
+  constexpr size_t kRingBuffer = 64;
+  Vertex ring[kRingBuffer];
+  size_t n = 0;
+  for (Halfedge b : halfedges(v1)) {
+    if (n == kRingBuffer) break;
+    ring[n++] = to_vertex(b);
+  }
+  const bool complete = n < kRingBuffer;
   for (Halfedge a : halfedges(v0)) {
     Vertex w = to_vertex(a);
     if (w == v1 || w == x || w == y) continue;
-    for (Halfedge b : halfedges(v1))
-      if (to_vertex(b) == w) return false;
+    if (complete) {
+      for (size_t i = 0; i < n; ++i)
+        if (ring[i] == w) return false;
+    } else {
+      for (Halfedge b : halfedges(v1))
+        if (to_vertex(b) == w) return false;
+    }
   }
   return true;
 }

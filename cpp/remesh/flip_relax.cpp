@@ -86,11 +86,11 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     // Compare smallest angles through their cosines (larger cosine = smaller angle).
     double before = std::max(min_angle_cosine(a, b, c), min_angle_cosine(b, a, d));
     if (before <= poor_cos) continue;
-    // Delaunay test: the angles opposite the edge sum to more than pi.
+    // Delaunay test: the angles gamma, delta opposite the edge sum to more than pi, i.e.
+    // sin(gamma + delta) < 0 (both lie in (0, pi)); no trigonometric calls needed.
     Vec3 ca = a - c, cb = b - c, da = a - d, db = b - d;
-    double angle_c = std::atan2(glm::length(glm::cross(ca, cb)), glm::dot(ca, cb));
-    double angle_d = std::atan2(glm::length(glm::cross(da, db)), glm::dot(da, db));
-    if (angle_c + angle_d <= M_PI) continue;
+    double sin_sum = glm::length(glm::cross(ca, cb)) * glm::dot(da, db) + glm::dot(ca, cb) * glm::length(glm::cross(da, db));
+    if (sin_sum >= 0) continue;
     double after = std::max(min_angle_cosine(a, d, c), min_angle_cosine(d, b, c));
     if (after >= before) continue;
     if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
@@ -165,7 +165,7 @@ void Remesher::Impl::project_vertices() {
 // input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
 // when it is short, otherwise flip their longest edge (a "cap" has no short edge).
 size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
-  const double kDegenerateAngle = angle_deg * M_PI / 180.0;
+  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
   size_t fixed = 0;
   for (int pass = 0; pass < 3; ++pass) {
     size_t fixed_this_pass = 0;
@@ -182,9 +182,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       Halfedge hs[3] = {mesh.halfedge(f), mesh.next(mesh.halfedge(f)), mesh.prev(mesh.halfedge(f))};
       Point p[3];
       for (int i = 0; i < 3; ++i) p[i] = mesh.position(mesh.to_vertex(hs[i]));
-      double ang[3];
-      geometry::triangle_angles(p[0], p[1], p[2], ang);
-      if (std::min({ang[0], ang[1], ang[2]}) >= kDegenerateAngle) continue;
+      if (min_angle_cosine(p[0], p[1], p[2]) <= cos_limit) continue;
       // Edge lengths: hs[i] runs from p[(i+2)%3] to p[i].
       double len[3];
       for (int i = 0; i < 3; ++i) len[i] = glm::length(p[i] - p[(i + 2) % 3]);
