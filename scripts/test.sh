@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The whole test pipeline (what `npm test` and CI run):
-#   setup → native build → ctest → ASan build → ctest under ASan/UBSan → wasm build → node --test tests/js/
-#   → vite build → playwright (headless Debian Chromium)
+#   setup → native build → ctest → ASan build → ctest under ASan/UBSan → fuzzers (scripts/fuzz.sh) → wasm build
+#   → node --test tests/js/ → vite build → playwright (headless Debian Chromium)
 # Prints one "[stage] name: N s" line per stage and a summary; any failure stops the run with a non-zero exit.
 # Environment:
-#   ADASCULPT_SKIP="asan e2e"   stages to skip (names: native asan wasm js web e2e); for quick local runs only
+#   ADASCULPT_SKIP="asan e2e"   stages to skip (names: native asan fuzz wasm js web e2e); for quick local runs only
 #   ADASCULPT_ASAN_FILTER=REGEX  only the ctest tests matching REGEX under ASan (default: all)
 #   ADASCULPT_CTEST_ARGS="..."   extra ctest arguments for both ctest runs (e.g. "-R Remesh")
 #   ADASCULPT_BUILD_ROOT=DIR     private build dirs (default build), ADASCULPT_PUBLISH_WASM=OFF, ADASCULPT_E2E_PORT:
@@ -68,6 +68,12 @@ fi
 if skipped asan; then note asan "ADASCULPT_SKIP"; else
   stage asan-build bash scripts/build.sh asan
   stage asan-ctest asan_ctest
+fi
+
+# libFuzzer on every reader and the session-file parser, bounded (ADASCULPT_FUZZ_SECONDS per target,
+# default 10); fails only on a finding (crash, leak, UB, OOM, hang), never on a slow machine.
+if skipped fuzz; then note fuzz "ADASCULPT_SKIP"; else
+  stage fuzz bash scripts/fuzz.sh
 fi
 
 if skipped wasm; then note wasm "ADASCULPT_SKIP"; else
