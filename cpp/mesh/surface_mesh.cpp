@@ -112,9 +112,11 @@ void SurfaceMesh::reserve(size_t nv, size_t ne, size_t nf) {
 }
 
 Vertex SurfaceMesh::add_vertex(const Point& p) {
+  // Copy first: p may refer into the position array that push_back is about to reallocate.
+  const Point position = p;
   vprops_.push_back();
   Vertex v(static_cast<Index>(vprops_.size() - 1));
-  points_[v] = p;
+  points_[v] = position;
   return v;
 }
 

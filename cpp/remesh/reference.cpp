@@ -134,6 +134,22 @@ void Remesher::Impl::build_reference() {
   for (std::uint32_t ti = 0; ti < tris.size(); ++ti)
     for (auto i : tris[ti]) ref_fan[fill[i]++] = ti;
 
+  // Neighbours across edges: the other triangle in both endpoints' fans.
+  ref_adjacent.assign(tris.size(), {UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  for (std::uint32_t ti = 0; ti < tris.size(); ++ti)
+    for (int i = 0; i < 3; ++i) {
+      std::uint32_t a = tris[ti][i], b = tris[ti][(i + 1) % 3];
+      for (std::uint32_t k = ref_fan_offset[a]; k < ref_fan_offset[a + 1]; ++k) {
+        std::uint32_t other = ref_fan[k];
+        if (other == ti) continue;
+        const auto& t = tris[other];
+        if (t[0] == b || t[1] == b || t[2] == b) {
+          ref_adjacent[ti][i] = other;
+          break;
+        }
+      }
+    }
+
   ref_segments.clear();
   for (Edge e : mesh.edges())
     if (is_feature(e)) ref_segments.push_back({mesh.vertex(e, 0).idx, mesh.vertex(e, 1).idx});
@@ -146,6 +162,11 @@ void Remesher::Impl::build_reference() {
   for (std::uint32_t si = 0; si < ref_segments.size(); ++si)
     for (auto i : ref_segments[si]) ref_segment_of_point[fill[i]++] = si;
   for (Vertex v : mesh.vertices()) segment_hint[v] = UINT32_MAX;
+  // Every vertex lies on the triangles of its own fan: the natural first hint.
+  for (Vertex v : mesh.vertices()) {
+    const std::uint32_t first = ref_fan_offset[v.idx];
+    ref_hint[v] = first < ref_fan_offset[v.idx + 1] ? ref_fan[first] : UINT32_MAX;
+  }
   reference_stale = false;
 }
 
@@ -158,7 +179,15 @@ geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Po
   const auto& pts = tree.points();
   if (hint == UINT32_MAX || hint >= tris.size()) return tree.closest_point(p);
   geometry::TriangleTree::ClosestHit best;
+  // Triangles already measured in this query: neighbouring fans overlap, and each walk step
+  // revisits most of the previous one.
+  constexpr int kSeenMax = 96;
+  std::uint32_t seen[kSeenMax];
+  int n_seen = 0;
   auto test = [&](std::uint32_t ti) {
+    for (int i = 0; i < n_seen; ++i)
+      if (seen[i] == ti) return false;
+    if (n_seen < kSeenMax) seen[n_seen++] = ti;
     const auto& t = tris[ti];
     double bary[3];
     Point q = geometry::closest_point_on_triangle(p, pts[t[0]], pts[t[1]], pts[t[2]], bary);
@@ -177,12 +206,20 @@ geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Po
   };
   best.distance2 = std::numeric_limits<double>::infinity();
   test(hint);
-  for (int step = 0; step < 8; ++step) {
-    std::uint32_t centre = best.triangle;
+  for (int step = 0; step < 16; ++step) {
+    const std::uint32_t centre = best.triangle;
     bool improved = false;
-    for (auto corner : tris[centre])
-      for (std::uint32_t k = ref_fan_offset[corner]; k < ref_fan_offset[corner + 1]; ++k)
-        if (ref_fan[k] != centre) improved |= test(ref_fan[k]);
+    for (std::uint32_t n : ref_adjacent[centre])
+      if (n != UINT32_MAX) improved |= test(n);
+    if (!improved) {
+      // Closest to a corner: the triangles around it that share no edge with the centre.
+      for (int i = 0; i < 3; ++i)
+        if (best.bary[i] > 1.0 - 1e-9) {
+          const std::uint32_t corner = tris[centre][i];
+          for (std::uint32_t k = ref_fan_offset[corner]; k < ref_fan_offset[corner + 1]; ++k)
+            improved |= test(ref_fan[k]);
+        }
+    }
     if (!improved) return best;
   }
   return tree.closest_point(p, best);

@@ -43,6 +43,7 @@ struct Remesher::Impl {
   std::vector<double> ref_sizing;  // per tree point
   // Triangles around each reference point (CSR), for the local projection walk.
   std::vector<std::uint32_t> ref_fan_offset, ref_fan;
+  std::vector<std::array<std::uint32_t, 3>> ref_adjacent;  // across each edge of a tree triangle
   // Feature and boundary edges of the reference (pairs of tree points) and, per point, the
   // segments that meet there (CSR): feature vertices are projected onto these lines.
   std::vector<std::array<std::uint32_t, 2>> ref_segments;
