@@ -276,7 +276,8 @@ export async function createSculptApp(container, options = {}) {
       await api.load(file);
       toaster.show(`Opened ${file.name}`);
     } catch (e) {
-      toaster.show(`Could not open ${file.name}: ${e.message}`, 'error');
+      // Reader messages already start with the file name.
+      toaster.show(e.message.startsWith(file.name) ? `Could not open ${e.message}` : `Could not open ${file.name}: ${e.message}`, 'error');
     }
   };
   const fileInput = createFileInput(root, openFile);
@@ -302,7 +303,11 @@ export async function createSculptApp(container, options = {}) {
       redo: () => guard(() => api.redo()),
     });
     if (root.clientWidth < 720) panel.gui.close(); // small embeds: the panel starts as a title bar
-    const inset = () => viewer.setInsetRight(panel.gui._closed ? 0 : panel.gui.domElement.offsetWidth + 10);
+    const inset = () => {
+      const px = panel.gui._closed ? 0 : panel.gui.domElement.offsetWidth + 10;
+      viewer.setInsetRight(px);
+      root.style.setProperty('--adasculpt-inset', `${px + 10}px`);
+    };
     panel.gui.onOpenClose(inset);
     inset();
     help = document.createElement('div');

@@ -74,6 +74,7 @@ export function createToaster(root) {
       if (kind === 'error') t.setAttribute('role', 'alert');
       t.textContent = message;
       box.appendChild(t);
+      while (box.children.length > 3) box.firstChild.remove(); // the newest three
       const timer = setTimeout(() => { t.remove(); timers.delete(timer); }, kind === 'error' ? 8000 : 3000);
       timers.add(timer);
     },

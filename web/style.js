@@ -15,11 +15,11 @@ export const STYLE = `
   border: 2px dashed #7fb2ff; border-radius: 12px; background: rgba(30, 60, 110, 0.35); font-size: 18px;
   pointer-events: none; }
 .adasculpt-drop.show { display: flex; }
-.adasculpt-toasts { position: absolute; left: 50%; bottom: 34px; transform: translateX(-50%); display: flex;
-  flex-direction: column; align-items: center; gap: 6px; max-width: 90%; pointer-events: none; }
-.adasculpt-toast { padding: 8px 14px; border-radius: 6px; background: rgba(30, 33, 40, 0.94);
+.adasculpt-toasts { position: absolute; left: 10px; right: var(--adasculpt-inset, 10px); bottom: 58px; display: flex;
+  flex-direction: column; align-items: center; gap: 6px; pointer-events: none; }
+.adasculpt-toast { max-width: 100%; box-sizing: border-box; padding: 8px 14px; border-radius: 6px; background: rgba(30, 33, 40, 0.94);
   box-shadow: 0 2px 12px rgba(0, 0, 0, 0.45); }
 .adasculpt-toast.error { background: rgba(160, 32, 38, 0.96); color: #fff; }
-.adasculpt-help { position: absolute; left: 10px; bottom: 8px; max-width: calc(100% - 300px); padding: 3px 8px; border-radius: 4px;
+.adasculpt-help { position: absolute; left: 10px; bottom: 8px; max-width: calc(100% - var(--adasculpt-inset, 10px) - 36px); padding: 3px 8px; border-radius: 4px;
   background: rgba(18, 20, 25, 0.5); color: #aab2c0; font-size: 11px; pointer-events: none; }
 `;
