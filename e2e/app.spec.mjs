@@ -217,3 +217,57 @@ test('the embed example runs two independent instances; dispose removes one', as
   expect(await page.evaluate(() => window.embedded.left.stats().vertices)).toBe(2562);
   expect(errors).toEqual([]);
 });
+
+test('dispose frees the app: repeated create/dispose leaves no canvas, listener or error behind', async ({ page }) => {
+  const errors = watchErrors(page);
+  await open(page);
+  const result = await page.evaluate(async () => {
+    window.app.dispose();
+    const host = document.getElementById('sculpt');
+    for (let i = 0; i < 6; i++) {
+      const app = await window.createSculptApp(host, { model: 'models/hemisphere.off', keyboard: 'global' });
+      if (app.stats().vertices !== 1861) throw new Error(`instance ${i}: ${app.stats().vertices} vertices`);
+      app.dispose();
+    }
+    // A disposed app's keyboard shortcuts are gone: Ctrl+Z on window must not reach it (no error either).
+    window.dispatchEvent(new KeyboardEvent('keydown', { key: 'z', ctrlKey: true }));
+    return { canvases: document.querySelectorAll('canvas').length, children: host.children.length };
+  });
+  expect(result).toEqual({ canvases: 0, children: 0 });
+  expect(errors).toEqual([]);
+});
+
+test('while dragging, at most one call into wasm per animation frame', async ({ page }) => {
+  await open(page);
+  await page.evaluate(() => {
+    // Count every Session method call, per animation frame.
+    const proto = Object.getPrototypeOf(window.app.session);
+    window.__calls = { n: 0, frames: [] };
+    for (const k of Object.getOwnPropertyNames(proto)) {
+      const f = proto[k];
+      if (k === 'constructor' || typeof f !== 'function') continue;
+      proto[k] = function (...a) { window.__calls.n++; return f.apply(this, a); };
+    }
+    (function tick() {
+      window.__calls.frames.push(window.__calls.n);
+      window.__calls.n = 0;
+      requestAnimationFrame(tick);
+    })();
+  });
+  const box = await page.locator('canvas').boundingBox();
+  const x = box.x + box.width / 2, y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down(); // pick + grabBegin happen here, in the event handler
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  await page.evaluate(() => { window.__calls.frames = []; });
+  for (let i = 1; i <= 30; i++) {
+    await page.mouse.move(x + i * 2, y - i * 4);
+    if (i % 3 === 0) await page.evaluate(() => new Promise((r) => requestAnimationFrame(r)));
+  }
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const frames = await page.evaluate(() => window.__calls.frames);
+  await page.mouse.up();
+  console.log(`wasm calls per frame while dragging: ${JSON.stringify(frames)}`);
+  expect(Math.max(...frames)).toBe(1);
+  expect(frames.reduce((a, b) => a + b, 0)).toBeGreaterThan(3);
+});
