@@ -109,9 +109,13 @@ class SurfaceMesh {
   // Link condition and boundary rules: true when collapsing h keeps the mesh a manifold.
   bool is_collapse_ok(Halfedge h) const;
   // Removes from_vertex(h), moving its connections to to_vertex(h) (which keeps its position).
+  // Of the two triangles that vanish, the edges of prev(h) and next(opposite(h)) survive; the
+  // edges of next(h) and prev(opposite(h)) are deleted (callers carrying edge data rely on it).
   void collapse(Halfedge h);
   bool is_flip_ok(Edge e) const;
-  // Replaces the diagonal of the quad formed by the two triangles of e.
+  // Replaces the diagonal of the quad formed by the two triangles of e. The two faces keep
+  // their slots: with halfedge(e,0) = a->b in (a, b, c) and halfedge(e,1) in (b, a, d), the first
+  // face becomes (a, d, c) and the second (d, b, c).
   void flip(Edge e);
 
   // Throws std::logic_error describing the first broken connectivity invariant.

@@ -74,27 +74,47 @@ size_t Remesher::Impl::flip_edges() {
 // poor triangle: the valence flips leave a few of these where the sizing changes quickly.
 size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   gather_scope_edges();
-  const double poor_cos = std::cos(poor_angle);
+  const double poor_sin2 = std::sin(poor_angle) * std::sin(poor_angle);
+  // Each face's smallest-angle measure once, not once per edge: most edges of a good mesh
+  // are rejected by these two lookups alone.
+  face_quality.resize(mesh.faces_size());
+  auto quality_of = [&](mesh::Face f) {
+    Vertex c[3];
+    mesh.face_vertices(f, c);
+    return min_angle_sin2(mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]));
+  };
+  if (whole_mesh) {
+    for (mesh::Face f : mesh.faces()) face_quality[f.idx] = quality_of(f);
+  } else {
+    for (Edge e : scope_edges)
+      for (unsigned i = 0; i < 2; ++i) {
+        mesh::Face f = mesh.face(mesh.halfedge(e, i));
+        if (f.is_valid()) face_quality[f.idx] = quality_of(f);
+      }
+  }
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
     Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+    mesh::Face f1 = mesh.face(h), f2 = mesh.face(o);
+    double before = std::min(face_quality[f1.idx], face_quality[f2.idx]);
+    if (before >= poor_sin2) continue;
     Vertex va = mesh.to_vertex(o), vb = mesh.to_vertex(h);
     Vertex vc = mesh.to_vertex(mesh.next(h)), vd = mesh.to_vertex(mesh.next(o));
     if (scope[vc] == kOutside || scope[vd] == kOutside) continue;
     const Point &a = mesh.position(va), &b = mesh.position(vb), &c = mesh.position(vc), &d = mesh.position(vd);
-    // Compare smallest angles through their cosines (larger cosine = smaller angle).
-    double before = std::max(min_angle_cosine(a, b, c), min_angle_cosine(b, a, d));
-    if (before <= poor_cos) continue;
     // Delaunay test: the angles gamma, delta opposite the edge sum to more than pi, i.e.
     // sin(gamma + delta) < 0 (both lie in (0, pi)); no trigonometric calls needed.
     Vec3 ca = a - c, cb = b - c, da = a - d, db = b - d;
     double sin_sum = glm::length(glm::cross(ca, cb)) * glm::dot(da, db) + glm::dot(ca, cb) * glm::length(glm::cross(da, db));
     if (sin_sum >= 0) continue;
-    double after = std::max(min_angle_cosine(a, d, c), min_angle_cosine(d, b, c));
-    if (after >= before) continue;
+    double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
+    if (std::min(q1, q2) <= before) continue;
     if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
+    // flip() keeps the face slots: f1 is now (a, d, c), f2 is (d, b, c).
+    face_quality[f1.idx] = q1;
+    face_quality[f2.idx] = q2;
     ++flips;
   }
   return flips;
@@ -165,7 +185,8 @@ void Remesher::Impl::project_vertices() {
 // input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
 // when it is short, otherwise flip their longest edge (a "cap" has no short edge).
 size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
-  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
+  const double sin_limit = std::sin(angle_deg * M_PI / 180.0);
+  const double sin2_limit = sin_limit * sin_limit;
   size_t fixed = 0;
   for (int pass = 0; pass < 3; ++pass) {
     size_t fixed_this_pass = 0;
@@ -182,7 +203,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       Halfedge hs[3] = {mesh.halfedge(f), mesh.next(mesh.halfedge(f)), mesh.prev(mesh.halfedge(f))};
       Point p[3];
       for (int i = 0; i < 3; ++i) p[i] = mesh.position(mesh.to_vertex(hs[i]));
-      if (min_angle_cosine(p[0], p[1], p[2]) <= cos_limit) continue;
+      if (min_angle_sin2(p[0], p[1], p[2]) >= sin2_limit) continue;
       // Edge lengths: hs[i] runs from p[(i+2)%3] to p[i].
       double len[3];
       for (int i = 0; i < 3; ++i) len[i] = glm::length(p[i] - p[(i + 2) % 3]);

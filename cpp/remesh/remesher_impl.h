@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "geometry/aabb_tree.h"
 #include "remesh/remesher.h"
 
@@ -29,7 +31,24 @@ enum Scope : std::uint8_t {
   kHeld = 2,     // on the border of a region: keeps its position and stays
 };
 
-double min_angle_cosine(const Point& a, const Point& b, const Point& c);
+// Squared sine of the smallest angle of a triangle (0 when degenerate). The smallest angle is
+// at most 60 degrees, where the sine grows with the angle, so this orders triangles by their
+// smallest angle without square roots or trigonometry: the inner loops call it per edge.
+inline double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
+  const Vec3 n = glm::cross(ab, -ca);
+  const double twice_area_sq = glm::dot(n, n);
+  // The smallest angle is opposite the shortest edge, between the two others.
+  double others;
+  if (lab <= lbc && lab <= lca)
+    others = lbc * lca;
+  else if (lbc <= lca)
+    others = lab * lca;
+  else
+    others = lab * lbc;
+  return others > 0 ? twice_area_sq / others : 0.0;
+}
 
 struct Remesher::Impl {
   Impl(SurfaceMesh& m, const RemeshOptions& o);
@@ -64,6 +83,7 @@ struct Remesher::Impl {
   std::vector<Vertex> scope_vertices;
   std::vector<Edge> scope_edges;
   std::vector<mesh::Face> faces_scratch;
+  std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
   std::vector<std::pair<double, Edge>> candidates;
   std::vector<int> valence;
   std::vector<Point> new_positions;

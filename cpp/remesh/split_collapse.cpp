@@ -24,27 +24,6 @@ double squared_length(const SurfaceMesh& m, Edge e) {
 
 }  // namespace
 
-// Cosine of the smallest angle of a triangle (1 for a degenerate one). Ordering triangles by
-// it is ordering by smallest angle, without trigonometric calls.
-double min_angle_cosine(const Point& a, const Point& b, const Point& c) {
-  double la = glm::dot(b - c, b - c), lb = glm::dot(c - a, c - a), lc = glm::dot(a - b, a - b);
-  // The smallest angle is opposite the shortest edge.
-  double s = la, p = lb, q = lc;
-  if (lb < s) {
-    s = lb;
-    p = la;
-    q = lc;
-  }
-  if (lc < s) {
-    s = lc;
-    p = la;
-    q = lb;
-  }
-  double denom = 2.0 * std::sqrt(p * q);
-  if (!(denom > 0)) return 1.0;
-  return std::clamp((p + q - s) / denom, -1.0, 1.0);
-}
-
 namespace {
 }  // namespace
 
@@ -182,19 +161,19 @@ bool Remesher::Impl::collapse_allowed(Halfedge h) const {
   return collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false) && collapse_topology_ok(h);
 }
 
-// The smallest angle among the triangles that collapsing h would reshape, as minus its cosine
+// The smallest angle among the triangles that collapsing h would reshape, as its squared sine
 // (larger is better).
 double Remesher::Impl::collapse_quality(Halfedge h) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   const Point& p1 = mesh.position(v1);
-  double worst = -1.0;
+  double worst = 1.0;
   for (Halfedge out : mesh.halfedges(v0)) {
     if (mesh.is_boundary(out)) continue;
     Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
     if (w == v1 || w2 == v1) continue;
-    worst = std::max(worst, min_angle_cosine(p1, mesh.position(w), mesh.position(w2)));
+    worst = std::min(worst, min_angle_sin2(p1, mesh.position(w), mesh.position(w2)));
   }
-  return -worst;
+  return worst;
 }
 
 size_t Remesher::Impl::collapse_short_edges() {
