@@ -77,17 +77,33 @@ void BiharmonicSolver::solve(const BiharmonicSystem& sys, std::vector<double>& x
   Eigen::Map<Eigen::VectorXd> xv(x.data(), sys.n_free);
   const bool same = m.same_pattern(a);
   const double bn = std::max(rhs.norm(), 1e-300);
+  bool carried = false;
   if (reuse == FieldReuse::CarryFactorization && same && m.has_factor) {
+    // Conjugate gradients preconditioned with the old factors (plain iterative refinement
+    // diverges: the bi-Laplacian is so ill-conditioned that a 1% change of the cotan weights
+    // already takes the spectral radius of I - F_old^-1 A above 1). Falls back to a fresh
+    // factorisation when the residual is not below the tolerance after the allowed steps.
     t = Clock::now();
     xv = m.ldlt.solve(rhs);
-    for (int k = 0; k < max_refinement_steps; ++k) {
-      Eigen::VectorXd r = rhs - a * xv;
-      if (r.norm() / bn <= refinement_tolerance) break;
-      xv += m.ldlt.solve(r);
+    Eigen::VectorXd r = rhs - a * xv;
+    Eigen::VectorXd z = m.ldlt.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    for (int k = 0; k < max_refinement_steps && r.norm() / bn > refinement_tolerance; ++k) {
+      const Eigen::VectorXd ap = a * p;
+      const double alpha = rz / p.dot(ap);
+      xv += alpha * p;
+      r -= alpha * ap;
+      z = m.ldlt.solve(r);
+      const double rz_new = r.dot(z);
+      p = z + (rz_new / rz) * p;
+      rz = rz_new;
       ++m.stats.refinement_steps;
     }
     m.stats.solve_ms = ms_since(t);
-  } else {
+    carried = (rhs - a * xv).norm() / bn <= refinement_tolerance;
+  }
+  if (!carried) {
     if (!same) {
       t = Clock::now();
       m.ldlt.analyzePattern(a);

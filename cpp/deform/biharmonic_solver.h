@@ -15,9 +15,9 @@
 //    of the system is identical to the previous one;
 //  - with FieldReuse::CarryFactorization the numeric factorisation is kept as well while the
 //    pattern (= the ROI topology and local numbering) is unchanged, and the new system is solved
-//    by iterative refinement preconditioned with the old factors (x += F_old^-1 (b - A x)).
-//    Deformation changes the cotan weights, so this is an approximation: stats() reports the
-//    relative residual it leaves.
+//    by conjugate gradients preconditioned with the old factors, warm-started from their solve.
+//    If the relative residual is still above the tolerance after max_refinement_steps, the
+//    matrix is factorised afresh, so the result is always a converged solve (stats() says which).
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -62,7 +62,7 @@ class BiharmonicSolver {
   // factorisation fails (a degenerate region). If laplacian is given it receives, per row, the
   // Laplacian M^-1 Lc w of the solution (used by the refinement's midpoint estimate).
   void solve(const BiharmonicSystem& system, std::vector<double>& x, FieldReuse reuse = FieldReuse::Exact,
-             int max_refinement_steps = 3, double refinement_tolerance = 1e-6,
+             int max_refinement_steps = 8, double refinement_tolerance = 1e-6,
              std::vector<double>* laplacian = nullptr);
   // Forgets the cached pattern and factors (e.g. at the start of a grab).
   void reset();

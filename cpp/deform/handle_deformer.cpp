@@ -185,7 +185,8 @@ void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
     if (row_index_[v.idx] >= 0) add_row(v);
   for (Vertex v : fixed_)
     if (row_index_[v.idx] >= 0) add_row(v);
-  solver_.solve(system_, solution_, options_.reuse, options_.max_refinement_steps, 1e-6, &row_laplacian_);
+  solver_.solve(system_, solution_, options_.reuse, options_.max_refinement_steps, options_.refinement_tolerance,
+                &row_laplacian_);
   result_.field_stats = solver_.stats();
   for (int i = 0; i < n_free; ++i) field_[free_[i].idx] = std::clamp(solution_[i], 0.0, 1.0);
   auto store = [&](const std::vector<Vertex>& vs) {

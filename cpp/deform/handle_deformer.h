@@ -31,7 +31,8 @@ namespace adasculpt::deform {
 
 struct DeformOptions {
   FieldReuse reuse = FieldReuse::Exact;
-  int max_refinement_steps = 3;  // CarryFactorization only
+  int max_refinement_steps = 20;  // CarryFactorization only: PCG steps before refactorising
+  double refinement_tolerance = 1e-4;  // relative residual of the carried solve (field error ~2e-3 on the dragon)
   bool refine = true;            // the midpoint test of step 3
   bool edges_only_distance = false;  // plain Dijkstra instead of the triangle update (comparison)
 };

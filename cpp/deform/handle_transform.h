@@ -2,9 +2,11 @@
 // The affine transform a user applies to a handle: scale, then rotation, then translation, all
 // about the handle centre c:  x' = c + translation + rotation * (scale * (x - c)).
 // The sculpting frame blends it over the region of interest (see handle_deformer.h).
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "geometry/portable_math.h"
 #include "mesh/types.h"
 
 namespace adasculpt::deform {
@@ -32,10 +34,27 @@ inline HandleTransform increment(const HandleTransform& from, const HandleTransf
   return d;
 }
 
+// Rotation by `radians` about a unit axis. Uses the portable trigonometry (as does the slerp
+// below) so that native and WebAssembly builds deform identically.
+inline glm::dquat angle_axis(double radians, const glm::dvec3& unit_axis) {
+  const double half = 0.5 * radians;
+  return glm::dquat(portable::cos(half), portable::sin(half) * unit_axis);
+}
+
+// slerp(identity, q, w) for a unit quaternion q: the rotation about q's axis by w times its
+// angle. Equal to glm::slerp from the identity, without the platform's sin/acos.
+inline glm::dquat slerp_from_identity(const glm::dquat& q, double w) {
+  const glm::dvec3 v(q.x, q.y, q.z);
+  const double s = glm::length(v);
+  if (!(s > 0)) return glm::dquat(1.0, 0.0, 0.0, 0.0);
+  const double half = portable::atan2(s, q.w) * w;
+  return glm::dquat(portable::cos(half), (portable::sin(half) / s) * v);
+}
+
 // The transform blended with weight w in [0,1]: translation and scale linearly, rotation by
 // slerp from the identity, about the centre c.
 inline Point blend(const HandleTransform& t, double w, const Point& c, const Point& x) {
-  const glm::dquat r = glm::slerp(glm::dquat(1.0, 0.0, 0.0, 0.0), t.rotation, w);
+  const glm::dquat r = slerp_from_identity(t.rotation, w);
   return c + w * t.translation + r * ((1.0 + w * (t.scale - 1.0)) * (x - c));
 }
 
