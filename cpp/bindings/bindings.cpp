@@ -176,7 +176,7 @@ class SessionHandle {
       t.translation = glm::dvec3(tx, ty, tz);
       glm::dvec3 axis(ax, ay, az);
       double len = glm::length(axis);
-      if (degrees != 0.0 && len > 0.0) t.rotation = glm::angleAxis(glm::radians(degrees), axis / len);
+      if (degrees != 0.0 && len > 0.0) t.rotation = deform::angle_axis(degrees * (M_PI / 180.0), axis / len);
       t.scale = scale;
       session_.grab_drag(t);
       sync(false);

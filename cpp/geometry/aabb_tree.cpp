@@ -92,8 +92,11 @@ std::uint32_t TriangleTree::split(std::vector<std::uint32_t>& order, const std::
   auto begin = order.begin() + first, end = begin + count;
   const std::uint32_t half = count / 2;
   auto median = [&] {
-    std::nth_element(begin, begin + half, end,
-                     [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    // Ties broken by index: the split must not depend on the standard library's algorithm,
+    // or the native and WebAssembly builds (libstdc++ vs libc++) would build different trees.
+    std::nth_element(begin, begin + half, end, [&](std::uint32_t a, std::uint32_t b) {
+      return centroids[a][axis] < centroids[b][axis] || (centroids[a][axis] == centroids[b][axis] && a < b);
+    });
     return half;
   };
   // Deep in the tree only the median keeps the depth (and so the query stack) bounded.
@@ -143,7 +146,8 @@ std::uint32_t TriangleTree::split(std::vector<std::uint32_t>& order, const std::
     if (cost < best_cost) best_cost = cost, best_bin = i;
   }
   if (best_bin < 0) return median();
-  auto mid = std::partition(begin, end, [&](std::uint32_t t) { return bin_of(t) <= best_bin; });
+  // Stable, for the same reason as the tie-break above: identical trees on every platform.
+  auto mid = std::stable_partition(begin, end, [&](std::uint32_t t) { return bin_of(t) <= best_bin; });
   return static_cast<std::uint32_t>(mid - begin);
 }
 
@@ -160,6 +164,8 @@ std::uint32_t TriangleTree::build_node(std::vector<std::uint32_t>& order, const 
   nodes_[index].lo = lo;
   nodes_[index].hi = hi;
   if (count <= kLeafSize) {
+    // A leaf's triangles in input order, whatever order the partitioning left them in.
+    std::sort(order.begin() + first, order.begin() + first + count);
     nodes_[index].first = first;
     nodes_[index].count = count;
     return index;

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/portable_math.h"
 #include "geometry/triangle.h"
 
 namespace adasculpt::geometry {
@@ -59,7 +60,7 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   if (!(area > 0.0)) return 0.0;
   double angle_sum = 0.0;
   for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
-    angle_sum += std::atan2(glm::length(glm::cross(q - p, r - p)), glm::dot(q - p, r - p));
+    angle_sum += portable::atan2(glm::length(glm::cross(q - p, r - p)), glm::dot(q - p, r - p));
   });
   const double mean = glm::length(cotan_laplacian(mesh, v)) / (4.0 * area);
   // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn

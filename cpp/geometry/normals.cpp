@@ -4,6 +4,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/portable_math.h"
+
 namespace adasculpt::geometry {
 
 Vec3 vertex_normal(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
@@ -16,7 +18,7 @@ Vec3 vertex_normal(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
     const Vec3 n = glm::cross(u, w);
     const double len = glm::length(n);
     if (len == 0.0) continue;  // degenerate corner: no direction to contribute
-    sum += (std::atan2(len, glm::dot(u, w)) / len) * n;
+    sum += (portable::atan2(len, glm::dot(u, w)) / len) * n;
   }
   const double len = glm::length(sum);
   return len > 0.0 ? sum / len : Vec3(0.0);

@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/portable_math.h"
+
 namespace adasculpt::geometry {
 
 namespace {
@@ -62,9 +64,9 @@ void triangle_angles(const Point& a, const Point& b, const Point& c, double out_
   // One cross-product magnitude for all three corners: it is twice the area whichever
   // corner it is taken at, and sharing it keeps the three angles consistent.
   double dbl_area = glm::length(glm::cross(ab, ac));
-  out_rad[0] = std::atan2(dbl_area, glm::dot(ab, ac));
-  out_rad[1] = std::atan2(dbl_area, -glm::dot(ab, bc));
-  out_rad[2] = std::atan2(dbl_area, glm::dot(ac, bc));
+  out_rad[0] = portable::atan2(dbl_area, glm::dot(ab, ac));
+  out_rad[1] = portable::atan2(dbl_area, -glm::dot(ab, bc));
+  out_rad[2] = portable::atan2(dbl_area, glm::dot(ac, bc));
 }
 
 double cotan(const Vec3& u, const Vec3& v) {

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/portable_math.h"
 #include "geometry/triangle.h"
 #include "remesh/remesher_impl.h"
 
@@ -74,7 +75,7 @@ size_t Remesher::Impl::flip_edges() {
 // poor triangle: the valence flips leave a few of these where the sizing changes quickly.
 size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   gather_scope_edges();
-  const double poor_sin2 = std::sin(poor_angle) * std::sin(poor_angle);
+  const double poor_sin2 = portable::sin(poor_angle) * portable::sin(poor_angle);
   // Each face's smallest-angle measure once, not once per edge: most edges of a good mesh
   // are rejected by these two lookups alone.
   face_quality.resize(mesh.faces_size());
@@ -185,7 +186,7 @@ void Remesher::Impl::project_vertices() {
 // input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
 // when it is short, otherwise flip their longest edge (a "cap" has no short edge).
 size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
-  const double sin_limit = std::sin(angle_deg * M_PI / 180.0);
+  const double sin_limit = portable::sin(angle_deg * M_PI / 180.0);
   const double sin2_limit = sin_limit * sin_limit;
   size_t fixed = 0;
   for (int pass = 0; pass < 3; ++pass) {

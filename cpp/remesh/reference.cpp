@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/curvature.h"
+#include "geometry/portable_math.h"
 #include "geometry/triangle.h"
 #include "remesh/remesher_impl.h"
 #include "remesh/sizing.h"
@@ -31,7 +32,7 @@ Remesher::Impl::Impl(SurfaceMesh& m, const RemeshOptions& o) : mesh(m), opt(o) {
 
 void Remesher::Impl::mark_features() {
   const double cos_limit =
-      opt.feature_angle_deg > 0 ? std::cos(opt.feature_angle_deg * M_PI / 180.0) : -2.0;
+      opt.feature_angle_deg > 0 ? portable::cos(opt.feature_angle_deg * M_PI / 180.0) : -2.0;
   for (Edge e : mesh.edges()) {
     if (mesh.is_boundary(e)) {
       feature[e] = 1;

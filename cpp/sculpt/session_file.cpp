@@ -135,7 +135,7 @@ json to_json(const SettingsPatch& s) {
 deform::HandleTransform GrabStep::total_at(double f) const {
   deform::HandleTransform t;
   t.translation = f * translate;
-  t.rotation = glm::angleAxis(glm::radians(f * degrees), axis);
+  t.rotation = deform::angle_axis(f * degrees * (M_PI / 180.0), axis);
   t.scale = 1.0 + f * (scale - 1.0);
   return t;
 }
