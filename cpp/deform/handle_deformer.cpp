@@ -38,6 +38,7 @@ void HandleDeformer::begin(const SurfaceMesh& mesh, const Point& picked, double 
   roi_radius_ = std::max(roi_radius, handle_radius);
   previous_total_ = HandleTransform{};
   first_frame_ = true;
+  frames_since_solve_ = 0;
   result_ = StepResult{};
   solver_.reset();
   // Once per grab: the vertex nearest to the picked point (a linear scan; a per-frame search
@@ -211,6 +212,48 @@ void HandleDeformer::compute_region_and_field(const SurfaceMesh& mesh) {
   compute_field(mesh);
 }
 
+// Between full recomputations the region and field of the last solve stay attached to the
+// vertices. The remesher has since removed some (they leave the lists) and added others to
+// result_.region: a new vertex takes the mean field of its already-known neighbours; one with
+// no handle or free neighbour lies on the fixed border and keeps its place.
+void HandleDeformer::carry_region(const SurfaceMesh& mesh) {
+  grow(mesh.vertices_size());
+  auto removed = [&](Vertex v) { return mesh.is_deleted(v); };
+  handle_.erase(std::remove_if(handle_.begin(), handle_.end(), removed), handle_.end());
+  free_.erase(std::remove_if(free_.begin(), free_.end(), removed), free_.end());
+  fixed_.erase(std::remove_if(fixed_.begin(), fixed_.end(), removed), fixed_.end());
+  // Two sweeps: a new vertex whose neighbours are all new gets its value in the second.
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (Vertex v : result_.region) {
+      if (mesh.is_deleted(v) || category(v) != kOutside) continue;
+      double field_sum = 0, laplacian_sum = 0;
+      int known = 0;
+      bool moves = false;
+      for (Vertex w : mesh.vertices(v)) {
+        const Category c = category(w);
+        if (c == kOutside) continue;
+        field_sum += c == kHandle ? 1.0 : (c == kFree ? field_[w.idx] : 0.0);
+        laplacian_sum += laplacian_[w.idx];
+        ++known;
+        moves |= c == kHandle || c == kFree;
+      }
+      if (!known || (!moves && sweep == 0)) continue;
+      index_[v.idx] = -1;
+      row_index_[v.idx] = -1;
+      laplacian_[v.idx] = laplacian_sum / known;
+      if (moves) {
+        set_category(v, kFree);
+        field_[v.idx] = std::clamp(field_sum / known, 0.0, 1.0);
+        free_.push_back(v);
+      } else {
+        set_category(v, kRing1);
+        field_[v.idx] = 0.0;
+        fixed_.push_back(v);
+      }
+    }
+  }
+}
+
 double HandleDeformer::midpoint_field(Vertex a, Vertex b, const Point& pa, const Point& pb) const {
   const Vec3 e = pb - pa;
   const double w = 0.5 * (field_[a.idx] + field_[b.idx]) - glm::dot(e, e) * (laplacian_[a.idx] + laplacian_[b.idx]) / 32.0;
@@ -256,11 +299,19 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
 StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon) {
   if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
   auto t = Clock::now();
-  compute_region(mesh);
-  result_.roi_ms = ms_since(t);
-  t = Clock::now();
-  compute_field(mesh);
-  result_.field_ms = ms_since(t);
+  const bool refresh = first_frame_ || ++frames_since_solve_ >= std::max(1, options_.field_refresh_frames);
+  if (refresh) {
+    compute_region(mesh);
+    result_.roi_ms = ms_since(t);
+    t = Clock::now();
+    compute_field(mesh);
+    result_.field_ms = ms_since(t);
+    frames_since_solve_ = 0;
+  } else {
+    carry_region(mesh);
+    result_.roi_ms = ms_since(t);
+    result_.field_ms = 0;
+  }
 
   const HandleTransform inc = increment(previous_total_, total);
   t = Clock::now();

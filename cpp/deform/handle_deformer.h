@@ -34,6 +34,11 @@ struct DeformOptions {
   int max_refinement_steps = 20;  // CarryFactorization only: PCG steps before refactorising
   double refinement_tolerance = 1e-4;  // relative residual of the carried solve (field error ~2e-3 on the dragon)
   bool refine = true;            // the midpoint test of step 3
+  // ROI and field are recomputed from scratch every this many frames; in the frames between,
+  // they are carried on the edited mesh (removed vertices leave, vertices the remesher added take
+  // the mean of their neighbours). 1 = every frame, as in the paper. The field changes little
+  // from one frame to the next, and its solve is most of a frame's cost (see README figures).
+  int field_refresh_frames = 4;
   bool edges_only_distance = false;  // plain Dijkstra instead of the triangle update (comparison)
 };
 
@@ -80,6 +85,7 @@ class HandleDeformer {
   Vertex find_seed(const SurfaceMesh& mesh) const;
   void compute_region(const SurfaceMesh& mesh);
   void compute_field(const SurfaceMesh& mesh);
+  void carry_region(const SurfaceMesh& mesh);
   double midpoint_field(Vertex a, Vertex b, const Point& pa, const Point& pb) const;
   size_t refine(SurfaceMesh& mesh, const HandleTransform& inc, double epsilon);
   void grow(size_t n);
@@ -98,6 +104,7 @@ class HandleDeformer {
   Vertex begin_seed_;
   HandleTransform previous_total_;
   bool first_frame_ = true;
+  int frames_since_solve_ = 0;
 
   GeodesicWorkspace geodesic_;
   BiharmonicSolver solver_;

@@ -54,15 +54,38 @@ Vec3 cotan_laplacian(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   return sum;
 }
 
+namespace {
+// cot from the scaled cosine and sine of an angle, with the clamping of cotan().
+double cot_scaled(double cos_scaled, double sin_scaled) {
+  if (sin_scaled == 0.0 && cos_scaled == 0.0) return 0.0;
+  if (std::abs(cos_scaled) >= kMaxCotan * sin_scaled) return cos_scaled > 0 ? kMaxCotan : -kMaxCotan;
+  return cos_scaled / sin_scaled;
+}
+}  // namespace
+
 double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   if (mesh.is_boundary(v)) return 0.0;  // also true for isolated vertices
-  const double area = mixed_voronoi_area(mesh, v);
-  if (!(area > 0.0)) return 0.0;
-  double angle_sum = 0.0;
+  // One walk around the fan gathers what mixed_voronoi_area, cotan_laplacian and the angle
+  // sum compute separately (the remesher calls this for every vertex of a sculpting region
+  // every frame): each corner's cross product serves the area, both cotangents and the angle.
+  double area = 0.0, angle_sum = 0.0;
+  Vec3 laplacian(0.0);
   for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
-    angle_sum += portable::atan2(glm::length(glm::cross(q - p, r - p)), glm::dot(q - p, r - p));
+    const Vec3 pq = q - p, pr = r - p, qr = r - q;
+    const double dot_p = glm::dot(pq, pr), dot_q = -glm::dot(pq, qr), dot_r = glm::dot(pr, qr);
+    const double twice_area = glm::length(glm::cross(pq, pr));
+    const double cot_q = cot_scaled(dot_q, twice_area), cot_r = cot_scaled(dot_r, twice_area);
+    laplacian += cot_r * pq + cot_q * pr;
+    angle_sum += portable::atan2(twice_area, dot_p);
+    if (dot_p < 0)
+      area += 0.25 * twice_area;
+    else if (dot_q < 0 || dot_r < 0)
+      area += 0.125 * twice_area;
+    else
+      area += 0.125 * (glm::dot(pr, pr) * cot_q + glm::dot(pq, pq) * cot_r);
   });
-  const double mean = glm::length(cotan_laplacian(mesh, v)) / (4.0 * area);
+  if (!(area > 0.0)) return 0.0;
+  const double mean = glm::length(laplacian) / (4.0 * area);
   // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn
   // a 1e-15 defect on a flat patch into a 1e-7 curvature.
   double defect = kTwoPi - angle_sum;

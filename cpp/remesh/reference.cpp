@@ -72,16 +72,40 @@ static void average_feature_sizing(const SurfaceMesh& mesh, const VertexProperty
   }
 }
 
+// Raw discrete curvature is noisy on scanned meshes and the noise would show as needless size
+// variation: one smoothing step with the free neighbours (kappa read from `kappa`, per slot).
+static double smoothed_curvature(const SurfaceMesh& mesh, const VertexProperty<std::uint8_t>& vclass,
+                                 const std::vector<double>& kappa, const std::vector<std::uint8_t>* known, Vertex v) {
+  double sum = 0;
+  int n = 0;
+  for (Vertex w : mesh.vertices(v))
+    if (vclass[w] == kFree && (!known || (*known)[w.idx])) {
+      sum += kappa[w.idx];
+      ++n;
+    }
+  return n ? 0.5 * kappa[v.idx] + 0.5 * sum / n : kappa[v.idx];
+}
+
+// The same field as build_reference() computes for the whole mesh (smoothed curvature,
+// feature averaging, bounded gradation), restricted to the given vertices and measured on the
+// current surface, so that a sculpting frame and a whole-mesh remesh agree on the sizes.
 void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Vertex>& vertices) {
   if (!opt.adaptive) {
     for (Vertex v : vertices) sizing[v] = opt.target_length;
     return;
   }
   kappa.resize(mesh.vertices_size());
-  for (Vertex v : vertices) kappa[v.idx] = geometry::max_abs_curvature(mesh, v);
+  kappa_known.assign(mesh.vertices_size(), 0);
+  for (Vertex v : vertices) {
+    kappa[v.idx] = geometry::max_abs_curvature(mesh, v);
+    kappa_known[v.idx] = 1;
+  }
   for (Vertex v : vertices)
-    sizing[v] = sizing_from_curvature(kappa[v.idx], opt.epsilon, opt.min_length, opt.max_length);
+    if (vclass[v] == kFree)
+      sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, &kappa_known, v), opt.epsilon,
+                                        opt.min_length, opt.max_length);
   average_feature_sizing(mesh, vclass, vertices, sizing, opt.max_length);
+  limit_sizing_gradation(mesh, vertices, sizing, kGradation, &kappa_known);
 }
 
 void Remesher::Impl::build_reference() {
@@ -91,22 +115,10 @@ void Remesher::Impl::build_reference() {
 
   if (opt.adaptive) {
     geometry::max_abs_curvature(mesh, kappa);
-    // One smoothing step of the discrete curvature: the raw estimate is noisy on scanned
-    // meshes and the noise would show up as needless size variation.
-    std::vector<double> smooth(kappa.size(), 0.0);
-    for (Vertex v : all) {
-      if (vclass[v] != kFree) continue;
-      double sum = 0;
-      int n = 0;
-      for (Vertex w : mesh.vertices(v))
-        if (vclass[w] == kFree) {
-          sum += kappa[w.idx];
-          ++n;
-        }
-      smooth[v.idx] = n ? 0.5 * kappa[v.idx] + 0.5 * sum / n : kappa[v.idx];
-    }
     for (Vertex v : all)
-      sizing[v] = sizing_from_curvature(smooth[v.idx], opt.epsilon, opt.min_length, opt.max_length);
+      if (vclass[v] == kFree)
+        sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, nullptr, v), opt.epsilon,
+                                          opt.min_length, opt.max_length);
     average_feature_sizing(mesh, vclass, all, sizing, opt.max_length);
     limit_sizing_gradation(mesh, all, sizing, kGradation);
   } else {

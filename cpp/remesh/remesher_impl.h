@@ -88,6 +88,7 @@ struct Remesher::Impl {
   std::vector<int> valence;
   std::vector<Point> new_positions;
   std::vector<double> kappa;
+  std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
 
   // ---- set-up (reference.cpp)
   void build_reference();

@@ -16,7 +16,8 @@ double sizing_from_curvature(double kappa, double epsilon, double min_length, do
 }
 
 void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& vertices,
-                            mesh::VertexProperty<double>& sizing, double gradation) {
+                            mesh::VertexProperty<double>& sizing, double gradation,
+                            const std::vector<std::uint8_t>* inside) {
   // Dijkstra from the smallest values outwards: each vertex is finalised with the smallest
   // bound any neighbour imposes.
   using Item = std::pair<double, mesh::Index>;
@@ -28,6 +29,7 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
     mesh::Vertex v(idx);
     if (value > sizing[v]) continue;  // stale entry
     for (mesh::Vertex w : mesh.vertices(v)) {
+      if (inside && !(*inside)[w.idx]) continue;
       double bound = value + gradation * glm::length(mesh.position(w) - mesh.position(v));
       if (bound < sizing[w]) {
         sizing[w] = bound;

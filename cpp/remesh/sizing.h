@@ -1,6 +1,7 @@
 #pragma once
 // The paper's sizing field (section 3): the longest edge that keeps a triangle within eps of
 // a surface of maximal absolute curvature kappa is L = sqrt(6 eps / kappa - 3 eps^2).
+#include <cstdint>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -16,7 +17,9 @@ double sizing_from_curvature(double kappa, double epsilon, double min_length, do
 // (e.g. beside a sharp crease), which no triangle shape can follow; a bounded gradient lets the
 // mesh grade smoothly and keeps the angles good. Only lowers values (never coarser than the
 // paper's field, so the tolerance still holds).
+// With `inside` (per vertex slot), the propagation stays among the vertices marked there.
 void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& vertices,
-                            mesh::VertexProperty<double>& sizing, double gradation);
+                            mesh::VertexProperty<double>& sizing, double gradation,
+                            const std::vector<std::uint8_t>* inside = nullptr);
 
 }  // namespace adasculpt::remesh

@@ -16,6 +16,7 @@
 #include "deform/geodesic.h"
 #include "deform/handle_deformer.h"
 #include "io/load_mesh.h"
+#include "remesh/remesher.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
 
@@ -44,6 +45,10 @@ const Setup& setup() {
       r.mesh = mesh::make_icosphere(6);
       r.name = "icosphere(6)";
     }
+    // A sculpting session works on a mesh the remesher has already adapted (the app remeshes
+    // on demand, and every frame keeps the touched region adapted); the raw scan would make
+    // the first frames of every grab re-triangulate the whole ROI.
+    remesh::remesh(r.mesh, remesh::default_options_for(r.mesh));
     // Pick the vertex with the largest y (the dragon's back), a convex spot to pull from.
     Vertex pick(0);
     for (Vertex v : r.mesh.vertices())
