@@ -195,9 +195,18 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
     if (whole_mesh) {
       for (mesh::Face f : mesh.faces()) faces_scratch.push_back(f);
     } else {
-      for (Vertex v : scope_vertices)
-        if (!mesh.is_deleted(v) && scope[v] == kActive)
-          for (mesh::Face f : mesh.faces(v)) faces_scratch.push_back(f);
+      // Each face once: from its first active corner in halfedge order.
+      for (Vertex v : scope_vertices) {
+        if (mesh.is_deleted(v) || scope[v] != kActive) continue;
+        for (Halfedge h : mesh.halfedges(v)) {
+          if (mesh.is_boundary(h)) continue;
+          Vertex prev_corner = mesh.from_vertex(mesh.prev(h));  // the corner before v
+          Vertex next_corner = mesh.to_vertex(h);
+          bool earlier = (scope[prev_corner] == kActive && prev_corner.idx < v.idx) ||
+                         (scope[next_corner] == kActive && next_corner.idx < v.idx);
+          if (!earlier) faces_scratch.push_back(mesh.face(h));
+        }
+      }
     }
     for (mesh::Face f : faces_scratch) {
       if (mesh.is_deleted(f)) continue;

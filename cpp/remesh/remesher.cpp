@@ -18,6 +18,8 @@ constexpr double kPoorAngleDeg = 30.0;
 constexpr double kDegenerateAngleDeg = 1.0;
 // Triangles below this angle after an iteration get a dedicated collapse or flip.
 constexpr double kSliverAngleDeg = 12.0;
+// Region iterations between two measurements of the sizing field (see iterate_region).
+constexpr int kRegionSizingInterval = 4;
 }  // namespace
 
 double bounding_box_diagonal(const SurfaceMesh& mesh) { return geometry::bounding_box_diagonal(mesh); }
@@ -103,6 +105,7 @@ IterationStats Remesher::iterate() {
     m.scope_vertices.push_back(v);
   }
   m.whole_mesh = true;
+  m.region_calls_since_sizing = 0;
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.whole_mesh = false;
   for (Vertex v : m.mesh.vertices()) m.scope[v] = kOutside;
@@ -128,7 +131,11 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       }
   // Feature classification may be stale where the deformation added vertices.
   for (Vertex v : m.scope_vertices) m.classify_vertex(v);
-  m.compute_sizing_from_current_surface(m.scope_vertices);
+  // The curvature of a surface being dragged changes little from one frame to the next: the
+  // sizing is measured again every few calls, and vertices added in between carry the mean
+  // of their edge's ends (split_edge).
+  if (m.region_calls_since_sizing == 0) m.compute_sizing_from_current_surface(m.scope_vertices);
+  m.region_calls_since_sizing = (m.region_calls_since_sizing + 1) % kRegionSizingInterval;
   IterationStats stats = m.run_iteration(false);
   region.clear();
   for (Vertex v : m.scope_vertices)

@@ -68,7 +68,8 @@ struct Remesher::Impl {
   std::vector<std::array<std::uint32_t, 2>> ref_segments;
   std::vector<std::uint32_t> ref_segment_offset, ref_segment_of_point;
   bool has_reference = false;
-  bool whole_mesh = false;  // the scope is every vertex: iterate edges directly
+  bool whole_mesh = false;
+  int region_calls_since_sizing = 0;  // the scope is every vertex: iterate edges directly
   bool reference_stale = false;
 
   // Per-element state kept on the mesh so it follows splits, collapses and compaction.

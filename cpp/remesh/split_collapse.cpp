@@ -70,8 +70,8 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
 
 size_t Remesher::Impl::split_long_edges() {
   size_t splits = 0;
+  gather_scope_edges();
   for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
-    gather_scope_edges();
     candidates.clear();
     for (Edge e : scope_edges) {
       double limit = kSplitFactor * target_length(e);
@@ -82,12 +82,23 @@ size_t Remesher::Impl::split_long_edges() {
     // Longest first: splitting them first gives the better-shaped fans.
     std::sort(candidates.begin(), candidates.end(),
               [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
+    const size_t first_new = scope_vertices.size();
     for (const auto& c : candidates) {
       Edge e = c.second;
       Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
       split_edge(e, mid);
       ++splits;
     }
+    // Only edges at the new vertices can still be too long: the others were not touched.
+    scope_edges.clear();
+    for (size_t i = first_new; i < scope_vertices.size(); ++i)
+      for (Halfedge h : mesh.halfedges(scope_vertices[i])) {
+        Vertex w = mesh.to_vertex(h);
+        if (scope[w] == kOutside) continue;
+        // Each edge once: new-to-new edges from their lower-index end.
+        bool w_new = w.idx >= scope_vertices[first_new].idx;
+        if (!w_new || scope_vertices[i].idx < w.idx) scope_edges.push_back(mesh.edge(h));
+      }
   }
   return splits;
 }
