@@ -107,6 +107,6 @@ echo "=== fuzz summary (${SECONDS_PER_TARGET} s per target)"
 printf '%-13s %10s %6s  %s\n' target executions cov result
 printf '%s\n' "${rows[@]}"
 if ((${#failed[@]})); then
-  echo "fuzz: findings in: ${failed[*]} (inputs saved under tests/fuzz/regressions/; replay: build/.../adasculpt_tests --gtest_filter='ReliabilityFuzz*')" >&2
+  echo "fuzz: findings in: ${failed[*]} (inputs saved under tests/fuzz/regressions/; replay: build/.../adasculpt_tests --gtest_filter='*ReliabilityFuzz*')" >&2
   exit 1
 fi

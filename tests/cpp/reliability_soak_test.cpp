@@ -1,0 +1,329 @@
+// Soak test: long runs of random sculpting through sculpt::Session (grabs with random centre, radii,
+// translation, rotation, scale and substeps; whole-mesh remeshes; runs of undo and redo), checking
+// the invariants a user relies on:
+//   - no NaN / infinite position, ever (checked after every step);
+//   - mesh().validate() passes, genus and boundary loops are those of the input (every N steps);
+//   - undo and redo are exact: a fingerprint model of the history (hash of counts + positions before
+//     each step) must match what undo() / redo() bring back, and undo() must fail exactly when the
+//     model's bounded history is exhausted;
+//   - memory stays bounded: at most Session::kMaxUndoSteps undo steps, a vertex count within a factor
+//     of the remesher's sizing bounds, the change set cleared per frame, peak RSS under a limit.
+//
+// The same binary serves the short run in ctest (default) and the long run of scripts/soak.sh:
+//   ADASCULPT_SOAK_STEPS=N        total steps, split evenly across the meshes (default 60)
+//   ADASCULPT_SOAK_MESHES=a,b,..  "icosphere" or paths (relative paths: repo root, or a bare name from
+//                                 ../shared/meshes); default: icosphere + tests/data/meshes/
+//                                 {hemisphere,eight,fandisk}.off
+//   ADASCULPT_SOAK_CHECK_EVERY=N  validate/topology period (default 20; the long run uses 100)
+//   ADASCULPT_SOAK_SEED=N         random seed (default 1; deterministic for a given seed)
+//   ADASCULPT_SOAK_MAX_RSS_MB=N   peak RSS limit (VmHWM, default 4096)
+// Every step is logged in session-file form: on a failure the steps up to it are written to
+// $TMPDIR/adasculpt_soak_<mesh>.json, replayable with `adasculpt replay`.
+// A closing line prints steps, meshes, frames, time, peak RSS and the number of checks passed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "geometry/topology.h"
+#include "mesh/primitives.h"
+#include "sculpt/session.h"
+#include "sculpt/session_file.h"
+
+namespace {
+
+using namespace adasculpt;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+long env_long(const char* name, long fallback) {
+  const char* v = std::getenv(name);
+  if (!v || !*v) return fallback;
+  char* end = nullptr;
+  const long x = std::strtol(v, &end, 10);
+  return (end && *end == '\0' && x > 0) ? x : fallback;
+}
+
+// kB of a /proc/self/status field (VmHWM = peak RSS, VmRSS = current); 0 where unavailable.
+long proc_status_kb(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const size_t n = std::strlen(field);
+  while (std::getline(in, line))
+    if (line.compare(0, n, field) == 0 && line.size() > n && line[n] == ':') return std::atol(line.c_str() + n + 1);
+  return 0;
+}
+
+std::vector<std::string> soak_meshes() {
+  std::vector<std::string> out;
+  const char* v = std::getenv("ADASCULPT_SOAK_MESHES");
+  std::string list = v && *v ? v
+                             : "icosphere,tests/data/meshes/hemisphere.off,tests/data/meshes/eight.off,"
+                               "tests/data/meshes/fandisk.off";
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Path of a mesh name: absolute, relative to the repo root, or a bare name in ../shared/meshes.
+std::string resolve_mesh(const std::string& name) {
+  if (fs::path(name).is_absolute()) return name;
+  const fs::path in_repo = fs::path(ADASCULPT_SOURCE_DIR) / name;
+  if (fs::exists(in_repo)) return in_repo.string();
+  return (fs::path(ADASCULPT_SHARED_MESHES_DIR) / name).string();
+}
+
+// Counts and the bits of every live position: what undo/redo must restore exactly.
+uint64_t fingerprint(const mesh::SurfaceMesh& m) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* p, size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  const uint64_t counts[3] = {m.n_vertices(), m.n_edges(), m.n_faces()};
+  mix(counts, sizeof counts);
+  for (mesh::Vertex v : m.vertices()) mix(&m.position(v), sizeof(Point));
+  return h;
+}
+
+bool all_finite(const mesh::SurfaceMesh& m) {
+  for (mesh::Vertex v : m.vertices()) {
+    const Point& p = m.position(v);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+  }
+  return true;
+}
+
+struct Totals {
+  long steps = 0, frames = 0, grabs = 0, remeshes = 0, undos = 0, redos = 0;
+  long checks = 0;  // invariant checks passed (finite positions, validate, genus, boundaries, history, undo/redo)
+};
+
+// One mesh, `steps` random steps.
+void soak_one(const std::string& name, long steps, long check_every, uint32_t seed, Totals& totals) {
+  sculpt::Session s;
+  if (name == "icosphere") {
+    s.load(mesh::make_icosphere(3));
+  } else {
+    const std::string path = resolve_mesh(name);
+    if (!fs::exists(path)) GTEST_SKIP() << path << " not found";
+    s.load_file(path);
+  }
+  const std::string label = fs::path(name).stem().string();
+  const bool fandisk = label == "fandisk";
+  if (fandisk) s.set_settings({{"features", 45}});  // sharp edges kept: the feature code path
+  const int genus0 = geometry::genus(s.mesh()), loops0 = geometry::boundary_loops(s.mesh());
+  const double diag = s.settings()["diagonal"].get<double>();
+  const double min_len = s.settings()["min_length"].get<double>();
+  const size_t faces0 = s.mesh().n_faces();
+
+  std::mt19937 rng(seed);
+  auto uni = [&rng](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  auto pick = [&rng](int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); };
+  auto unit = [&]() {
+    Vec3 d;
+    do d = Vec3(uni(-1, 1), uni(-1, 1), uni(-1, 1));
+    while (glm::length(d) < 0.1 || glm::length(d) > 1);
+    return glm::normalize(d);
+  };
+
+  // The replayable log, and the model of the history: fingerprints of the mesh before each step.
+  json log = {{"version", 1}, {"settings", fandisk ? json{{"features", 45}} : json::object()}, {"steps", json::array()}};
+  std::deque<uint64_t> undo_model, redo_model;
+  auto dump_log = [&]() {
+    const char* tmp = std::getenv("TMPDIR");
+    const fs::path p = fs::path(tmp && *tmp ? tmp : "/tmp") / ("adasculpt_soak_" + label + ".json");
+    std::ofstream(p) << log.dump(1) << "\n";
+    return p.string();
+  };
+  auto fail_here = [&](long step, const std::string& what) {
+    return ::testing::AssertionFailure() << label << " step " << step << ": " << what
+                                         << " (steps so far: " << dump_log() << ")";
+  };
+  auto push_model = [&](uint64_t before) {
+    undo_model.push_back(before);
+    redo_model.clear();
+    while (undo_model.size() > sculpt::Session::kMaxUndoSteps) undo_model.pop_front();
+  };
+
+  for (long step = 1; step <= steps; ++step) {
+    const int kind = pick(100);
+    try {
+      if (kind < 70) {  // grab
+        sculpt::GrabStep g;
+        const auto& m = s.mesh();
+        mesh::Vertex v(static_cast<mesh::Index>(pick(static_cast<int>(m.vertices_size()))));
+        while (m.is_deleted(v)) v = mesh::Vertex(static_cast<mesh::Index>(pick(static_cast<int>(m.vertices_size()))));
+        g.center = m.position(v) + uni(0, 0.02 * diag) * unit();
+        g.handle_radius = pick(4) == 0 ? 0.0 : uni(0, 0.05 * diag);
+        g.roi_radius = g.handle_radius + uni(0.02 * diag, 0.25 * diag);
+        const int mode = pick(4);  // translate / rotate / scale / everything
+        if (mode == 0 || mode == 3) g.translate = uni(0, 0.12 * diag) * unit();
+        if (mode == 1 || mode == 3) {
+          g.axis = unit();
+          g.degrees = uni(-60, 60);
+        }
+        if (mode == 2 || mode == 3) g.scale = uni(0.7, 1.4);
+        g.substeps = 1 + pick(6);
+        log["steps"].push_back(sculpt::to_json(sculpt::SessionFile{{}, {sculpt::SessionStep{
+                                                                      sculpt::SessionStep::Kind::Grab, g, 1}}})["steps"][0]);
+        const uint64_t before = fingerprint(s.mesh());
+        s.grab_begin(g.center, g.handle_radius, g.roi_radius);
+        for (int i = 1; i <= g.substeps; ++i) {
+          s.grab_drag(g.total_at(double(i) / g.substeps));
+          ++totals.frames;
+          if (!all_finite(s.mesh())) {
+            ADD_FAILURE() << fail_here(step, "non-finite position during frame " + std::to_string(i));
+            return;
+          }
+          s.clear_changes();  // as the app does once per frame
+        }
+        s.grab_end();
+        push_model(before);
+        ++totals.grabs;
+      } else if (kind < 80) {  // whole-mesh remesh
+        const int it = 1 + pick(2);
+        log["steps"].push_back({{"remesh", {{"iterations", it}}}});
+        const uint64_t before = fingerprint(s.mesh());
+        s.remesh(it);
+        push_model(before);
+        ++totals.remeshes;
+      } else {  // a run of undo (62%) or redo
+        const bool undo = kind < 92;
+        const int n = 1 + pick(4);
+        log["steps"].push_back({{undo ? "undo" : "redo", n}});
+        for (int i = 0; i < n; ++i) {
+          std::deque<uint64_t>& from = undo ? undo_model : redo_model;
+          std::deque<uint64_t>& to = undo ? redo_model : undo_model;
+          const uint64_t now = fingerprint(s.mesh());
+          const bool did = undo ? s.undo() : s.redo();
+          if (did != !from.empty()) {
+            ADD_FAILURE() << fail_here(step, std::string(undo ? "undo" : "redo") + " returned " + (did ? "true" : "false") +
+                                                 " with " + std::to_string(from.size()) + " steps in the model");
+            return;
+          }
+          if (!did) break;
+          if (fingerprint(s.mesh()) != from.back()) {
+            ADD_FAILURE() << fail_here(step, std::string(undo ? "undo" : "redo") + " did not restore the exact mesh");
+            return;
+          }
+          ++totals.checks;
+          from.pop_back();
+          to.push_back(now);
+          ++(undo ? totals.undos : totals.redos);
+        }
+      }
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << fail_here(step, std::string("exception: ") + e.what());
+      return;
+    }
+    s.clear_changes();
+    ++totals.steps;
+
+    if (!all_finite(s.mesh())) {
+      ADD_FAILURE() << fail_here(step, "non-finite position");
+      return;
+    }
+    ++totals.checks;
+    if (step % check_every == 0 || step == steps) {
+      try {
+        s.mesh().validate();
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << fail_here(step, std::string("validate: ") + e.what());
+        return;
+      }
+      const int genus = geometry::genus(s.mesh()), loops = geometry::boundary_loops(s.mesh());
+      if (genus != genus0 || loops != loops0) {
+        ADD_FAILURE() << fail_here(step, "topology changed: genus " + std::to_string(genus0) + " -> " +
+                                             std::to_string(genus) + ", boundary loops " + std::to_string(loops0) +
+                                             " -> " + std::to_string(loops));
+        return;
+      }
+      // Bounded size: the sizing field never asks for edges shorter than min_length, so the face
+      // count is bounded by area / min_length^2; a runaway refinement shows up as a blow-up.
+      const size_t faces = s.mesh().n_faces();
+      const size_t limit = std::max<size_t>(50 * faces0, size_t(40.0 * diag * diag / (min_len * min_len)));
+      if (faces > limit) {
+        ADD_FAILURE() << fail_here(step, "face count " + std::to_string(faces) + " exceeds " + std::to_string(limit));
+        return;
+      }
+      if (!s.changes().touched_vertices.empty()) {
+        ADD_FAILURE() << fail_here(step, "change set not cleared");
+        return;
+      }
+      totals.checks += 4;
+    }
+  }
+
+  // History bounded and intact: walk all the way back (each snapshot valid) and forward again.
+  size_t back = 0;
+  while (s.undo()) {
+    ++back;
+    s.mesh().validate();
+    ASSERT_LE(back, sculpt::Session::kMaxUndoSteps) << label << ": undo history is not bounded";
+  }
+  EXPECT_EQ(back, undo_model.size()) << label;
+  if (!undo_model.empty()) {
+    EXPECT_EQ(fingerprint(s.mesh()), undo_model.front()) << label << ": oldest snapshot";
+  }
+  size_t forward = 0;
+  while (s.redo()) ++forward;
+  EXPECT_EQ(forward, back + redo_model.size()) << label;
+  s.mesh().validate();
+  totals.checks += 3;
+}
+
+TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
+  const long total_steps = env_long("ADASCULPT_SOAK_STEPS", 60);
+  const long check_every = env_long("ADASCULPT_SOAK_CHECK_EVERY", 20);
+  const uint32_t seed = static_cast<uint32_t>(env_long("ADASCULPT_SOAK_SEED", 1));
+  const long max_rss_mb = env_long("ADASCULPT_SOAK_MAX_RSS_MB", 4096);
+  const std::vector<std::string> meshes = soak_meshes();
+  ASSERT_FALSE(meshes.empty());
+
+  const auto t0 = std::chrono::steady_clock::now();
+  Totals totals;
+  std::vector<std::string> done;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const long steps = total_steps / long(meshes.size()) + (long(i) < total_steps % long(meshes.size()) ? 1 : 0);
+    const Totals before = totals;
+    const auto m0 = std::chrono::steady_clock::now();
+    soak_one(meshes[i], steps, check_every, seed + uint32_t(i), totals);
+    if (HasFailure()) return;
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
+    std::printf("[soak] %-28s steps %6ld frames %7ld grabs %6ld remeshes %5ld undos %5ld redos %5ld  %.1f s  "
+                "VmHWM %ld MB\n",
+                meshes[i].c_str(), totals.steps - before.steps, totals.frames - before.frames,
+                totals.grabs - before.grabs, totals.remeshes - before.remeshes, totals.undos - before.undos,
+                totals.redos - before.redos, sec, proc_status_kb("VmHWM") / 1024);
+    std::fflush(stdout);
+    if (totals.steps > before.steps) done.push_back(fs::path(meshes[i]).filename().string());
+  }
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const long hwm_mb = proc_status_kb("VmHWM") / 1024;
+  std::string names;
+  for (const auto& d : done) names += (names.empty() ? "" : ",") + d;
+  std::printf("[soak] total: %ld steps on %zu meshes (%s), %ld frames, %.1f s, peak RSS (VmHWM) %ld MB, "
+              "%ld invariant checks passed, seed %u\n",
+              totals.steps, done.size(), names.c_str(), totals.frames, sec, hwm_mb, totals.checks, seed);
+  if (hwm_mb > 0) {
+    EXPECT_LE(hwm_mb, max_rss_mb) << "peak RSS";
+  }
+}
+
+}  // namespace
