@@ -263,10 +263,11 @@ double HandleDeformer::midpoint_field(Vertex a, Vertex b, const Point& pa, const
 size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, double epsilon) {
   split_edges_.clear();
   const double eps2 = epsilon * epsilon;
+  const Blender blend(inc);
   for (Vertex v : free_) {
     const Point& pv = mesh.position(v);
     const double wv = field_[v.idx];
-    const Point dv = blend(inc, wv, center_, pv);
+    const Point dv = blend(wv, center_, pv);
     for (mesh::Halfedge h : mesh.halfedges(v)) {
       const Vertex u = mesh.to_vertex(h);
       const Category cu = category(u);
@@ -274,8 +275,8 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
       if (cu == kOutside || cu == kRing2) continue;
       const Point& pu = mesh.position(u);
       const double wu = field_[u.idx];
-      const Point mid_of_deformed = 0.5 * (dv + blend(inc, wu, center_, pu));
-      const Point deformed_mid = blend(inc, midpoint_field(v, u, pv, pu), center_, 0.5 * (pu + pv));
+      const Point mid_of_deformed = 0.5 * (dv + blend(wu, center_, pu));
+      const Point deformed_mid = blend(midpoint_field(v, u, pv, pu), center_, 0.5 * (pu + pv));
       const Vec3 dev = deformed_mid - mid_of_deformed;
       if (glm::dot(dev, dev) > eps2) split_edges_.push_back(mesh.edge(h));
     }
@@ -319,8 +320,9 @@ StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total
   result_.refine_ms = ms_since(t);
 
   t = Clock::now();
-  for (Vertex v : handle_) mesh.position(v) = blend(inc, 1.0, center_, mesh.position(v));
-  for (Vertex v : free_) mesh.position(v) = blend(inc, field_[v.idx], center_, mesh.position(v));
+  const Blender blend(inc);
+  for (Vertex v : handle_) mesh.position(v) = blend(1.0, center_, mesh.position(v));
+  for (Vertex v : free_) mesh.position(v) = blend(field_[v.idx], center_, mesh.position(v));
   center_ += inc.translation;
   previous_total_ = total;
   first_frame_ = false;

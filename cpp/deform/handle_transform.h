@@ -41,21 +41,36 @@ inline glm::dquat angle_axis(double radians, const glm::dvec3& unit_axis) {
   return glm::dquat(portable::cos(half), portable::sin(half) * unit_axis);
 }
 
-// slerp(identity, q, w) for a unit quaternion q: the rotation about q's axis by w times its
-// angle. Equal to glm::slerp from the identity, without the platform's sin/acos.
-inline glm::dquat slerp_from_identity(const glm::dquat& q, double w) {
-  const glm::dvec3 v(q.x, q.y, q.z);
-  const double s = glm::length(v);
-  if (!(s > 0)) return glm::dquat(1.0, 0.0, 0.0, 0.0);
-  const double half = portable::atan2(s, q.w) * w;
-  return glm::dquat(portable::cos(half), (portable::sin(half) / s) * v);
-}
-
 // The transform blended with weight w in [0,1]: translation and scale linearly, rotation by
-// slerp from the identity, about the centre c.
-inline Point blend(const HandleTransform& t, double w, const Point& c, const Point& x) {
-  const glm::dquat r = slerp_from_identity(t.rotation, w);
-  return c + w * t.translation + r * ((1.0 + w * (t.scale - 1.0)) * (x - c));
-}
+// slerp from the identity, about the centre c. The rotation's axis and angle are found once
+// per transform, so a vertex costs one sin/cos pair (nothing for a rotation-free transform):
+// a frame blends every vertex of the region.
+class Blender {
+ public:
+  explicit Blender(const HandleTransform& t) : t_(t) {
+    const glm::dvec3 v(t.rotation.x, t.rotation.y, t.rotation.z);
+    const double s = glm::length(v);
+    rotates_ = s > 0;
+    if (rotates_) {
+      axis_ = v / s;
+      half_angle_ = portable::atan2(s, t.rotation.w);
+    }
+  }
+  Point operator()(double w, const Point& c, const Point& x) const {
+    const Vec3 scaled = (1.0 + w * (t_.scale - 1.0)) * (x - c);
+    if (!rotates_) return c + w * t_.translation + scaled;
+    const double half = w * half_angle_;
+    const glm::dquat r(portable::cos(half), portable::sin(half) * axis_);
+    return c + w * t_.translation + r * scaled;
+  }
+
+ private:
+  HandleTransform t_;
+  bool rotates_ = false;
+  glm::dvec3 axis_{0.0};
+  double half_angle_ = 0;
+};
+
+inline Point blend(const HandleTransform& t, double w, const Point& c, const Point& x) { return Blender(t)(w, c, x); }
 
 }  // namespace adasculpt::deform
