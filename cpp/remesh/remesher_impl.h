@@ -122,7 +122,7 @@ struct Remesher::Impl {
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;
   bool collapse_topology_ok(Halfedge h) const;
-  bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move) const;
+  bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true) const;
   double collapse_quality(Halfedge h) const;
   bool flip_geometry_ok(Edge e, bool require_flat) const;
   Vertex split_edge(Edge e, const Point& p);

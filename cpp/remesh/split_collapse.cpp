@@ -129,7 +129,8 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
 // beyond the split threshold (the collapse would be undone at once), and every surviving
 // triangle around the moving end(s) keeps its orientation within 60 degrees and a non-zero area.
 // The length test is the cheap one that fails most often, so it runs first over both rings.
-bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move) const {
+bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move,
+                                           bool check_lengths) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   Halfedge o = mesh.opposite(h);
   Vertex x = mesh.is_boundary(h) ? Vertex() : mesh.to_vertex(mesh.next(h));
@@ -162,7 +163,7 @@ bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool 
     }
     return true;
   };
-  if (!lengths_ok(v0, v1) || (both_ends_move && !lengths_ok(v1, v0))) return false;
+  if (check_lengths && (!lengths_ok(v0, v1) || (both_ends_move && !lengths_ok(v1, v0)))) return false;
   return normals_ok(v0, v1) && (!both_ends_move || normals_ok(v1, v0));
 }
 
