@@ -221,10 +221,12 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       int longest = int(std::max_element(len, len + 3) - len);
       bool done = false;
       if (len[shortest] < 0.2 * len[longest]) {
-        // A sliver's neighbours may end up a little beyond the split threshold: accepted here,
-        // the next split pass evens that out, while the sliver would stay forever.
+        // A sliver's neighbours may end up a little beyond the split threshold, and its fan may
+        // turn by up to 90 degrees (folded input such as self-intersections): accepted here, the
+        // next passes even that out, while the sliver would stay forever. Never a fold-over.
         for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
-          if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false) && collapse_topology_ok(h)) {
+          if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.0) &&
+              collapse_topology_ok(h)) {
             Halfedge o = mesh.opposite(h);
             if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
             if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];

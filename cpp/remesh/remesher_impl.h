@@ -122,7 +122,9 @@ struct Remesher::Impl {
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;
   bool collapse_topology_ok(Halfedge h) const;
-  bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true) const;
+  // min_cos: how far a surviving triangle's normal may turn (0.5 = 60 degrees).
+  bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true,
+                            double min_cos = 0.5) const;
   double collapse_quality(Halfedge h) const;
   bool flip_geometry_ok(Edge e, bool require_flat) const;
   Vertex split_edge(Edge e, const Point& p);

@@ -130,7 +130,7 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
 // triangle around the moving end(s) keeps its orientation within 60 degrees and a non-zero area.
 // The length test is the cheap one that fails most often, so it runs first over both rings.
 bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move,
-                                           bool check_lengths) const {
+                                           bool check_lengths, double min_cos) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   Halfedge o = mesh.opposite(h);
   Vertex x = mesh.is_boundary(h) ? Vertex() : mesh.to_vertex(mesh.next(h));
@@ -159,7 +159,7 @@ bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool 
       double len_new = glm::length(n_new), len_old = glm::length(n_old);
       if (len_new <= 1e-14 * glm::dot(pw - target, pw - target)) return false;
       // Old degenerate triangles have no orientation to keep.
-      if (len_old > 0 && glm::dot(n_old, n_new) < 0.5 * len_old * len_new) return false;
+      if (len_old > 0 && glm::dot(n_old, n_new) < min_cos * len_old * len_new) return false;
     }
     return true;
   };
