@@ -225,7 +225,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         // turn by up to 90 degrees (folded input such as self-intersections): accepted here, the
         // next passes even that out, while the sliver would stay forever. Never a fold-over.
         for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
-          if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.0) &&
+          if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.5) &&
               collapse_topology_ok(h)) {
             Halfedge o = mesh.opposite(h);
             if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];

@@ -18,6 +18,8 @@ namespace {
 // 0.2 measured best on the shared meshes: 0.4 leaves 22-24 degree minimum angles and 0.25 a mean
 // min angle just under 50 on face.off; 0.15 adds triangles for no further gain.
 constexpr double kGradation = 0.2;
+// Turning angle (radians) above which a feature-line vertex counts as a kink, not a curve.
+constexpr double kMaxCurveTurn = M_PI / 6;
 }  // namespace
 
 Remesher::Impl::Impl(SurfaceMesh& m, const RemeshOptions& o) : mesh(m), opt(o) {
@@ -53,22 +55,43 @@ void Remesher::Impl::classify_vertex(Vertex v) {
   vclass[v] = n == 0 ? kFree : n == 2 ? kFeatureLine : kCorner;
 }
 
-// Sizing at vertices whose curvature is not meaningful (feature lines, corners, boundary):
-// the average of their free neighbours, so that sharp edges are not over-sampled (paper,
-// section 3, feature adjustments).
-static void average_feature_sizing(const SurfaceMesh& mesh, const VertexProperty<std::uint8_t>& vclass,
-                                   const std::vector<Vertex>& vertices, VertexProperty<double>& sizing,
-                                   double fallback) {
+// Sizing at vertices whose surface curvature is not meaningful (feature lines, corners, boundary):
+// taken from their free neighbours, not from the sharp edge's huge discrete curvature, so that
+// sharp edges are not over-sampled (paper, section 3, feature adjustments).
+void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices) {
   for (Vertex v : vertices) {
     if (vclass[v] == kFree) continue;
-    double sum = 0;
+    double smallest = opt.max_length;
     int n = 0;
-    for (Vertex w : mesh.vertices(v))
+    Vertex ends[2];
+    int n_ends = 0;
+    for (Halfedge h : mesh.halfedges(v)) {
+      Vertex w = mesh.to_vertex(h);
       if (vclass[w] == kFree) {
-        sum += sizing[w];
+        smallest = std::min(smallest, sizing[w]);
         ++n;
       }
-    sizing[v] = n ? sum / n : fallback;
+      if (is_feature(mesh.edge(h)) && n_ends < 2) ends[n_ends++] = w;
+    }
+    // The paper averages the free neighbours; their minimum keeps the triangles beside a sharp
+    // edge as small as the curved side needs (fandisk: Hausdorff 0.210% -> 0.200% of the
+    // diagonal for 6% more vertices).
+    double size = n ? smallest : opt.max_length;
+    // A curved feature line needs its own resolution: a chord of a circle of radius r stays
+    // within eps of the arc when it is shorter than sqrt(8 r eps - 4 eps^2).
+    if (vclass[v] == kFeatureLine && n_ends == 2) {
+      const Point& p = mesh.position(v);
+      const Vec3 in = p - mesh.position(ends[0]), out = mesh.position(ends[1]) - p;
+      const double turn = portable::atan2(glm::length(glm::cross(in, out)), glm::dot(in, out));
+      const double span = 0.5 * (glm::length(in) + glm::length(out));
+      // A sharper turn is a corner of the line, not a curve to resolve.
+      if (turn > 0 && turn < kMaxCurveTurn && span > 0) {
+        const double r = span / turn, e = opt.epsilon;
+        const double chord2 = 8 * r * e - 4 * e * e;
+        size = std::min(size, chord2 > 0 ? std::max(std::sqrt(chord2), opt.min_length) : opt.min_length);
+      }
+    }
+    sizing[v] = size;
   }
 }
 
@@ -104,7 +127,7 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
     if (vclass[v] == kFree)
       sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, &kappa_known, v), opt.epsilon,
                                         opt.min_length, opt.max_length);
-  average_feature_sizing(mesh, vclass, vertices, sizing, opt.max_length);
+  average_feature_sizing(vertices);
   limit_sizing_gradation(mesh, vertices, sizing, kGradation, &kappa_known);
 }
 
@@ -119,7 +142,7 @@ void Remesher::Impl::build_reference() {
       if (vclass[v] == kFree)
         sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, nullptr, v), opt.epsilon,
                                           opt.min_length, opt.max_length);
-    average_feature_sizing(mesh, vclass, all, sizing, opt.max_length);
+    average_feature_sizing(all);
     limit_sizing_gradation(mesh, all, sizing, kGradation);
   } else {
     for (Vertex v : all) sizing[v] = opt.target_length;

@@ -96,6 +96,7 @@ struct Remesher::Impl {
   void mark_features();
   void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
+  void average_feature_sizing(const std::vector<Vertex>& vertices);
   double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
   geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint) const;
   void project(Vertex v);
