@@ -180,8 +180,11 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         }
         if (mode == 2 || mode == 3) g.scale = uni(0.7, 1.4);
         g.substeps = 1 + pick(6);
-        log["steps"].push_back(sculpt::to_json(sculpt::SessionFile{{}, {sculpt::SessionStep{
-                                                                      sculpt::SessionStep::Kind::Grab, g, 1}}})["steps"][0]);
+        sculpt::SessionFile one;
+        one.steps.emplace_back();
+        one.steps.back().kind = sculpt::SessionStep::Kind::Grab;
+        one.steps.back().grab = g;
+        log["steps"].push_back(sculpt::to_json(one)["steps"][0]);
         const uint64_t before = fingerprint(s.mesh());
         s.grab_begin(g.center, g.handle_radius, g.roi_radius);
         for (int i = 1; i <= g.substeps; ++i) {
@@ -267,6 +270,11 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         return;
       }
       totals.checks += 4;
+    }
+    if (step % 500 == 0) {  // progress of long runs
+      std::printf("[soak]   %s: step %ld/%ld, %zu vertices, VmHWM %ld MB, %ld checks so far\n", label.c_str(), step,
+                  steps, s.mesh().n_vertices(), proc_status_kb("VmHWM") / 1024, totals.checks);
+      std::fflush(stdout);
     }
   }
 
