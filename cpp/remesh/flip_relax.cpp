@@ -40,6 +40,23 @@ bool Remesher::Impl::flip_geometry_ok(Edge e, bool require_flat) const {
   return new_cos >= std::min(old_cos, 0.9) - 1e-12 && new_cos > 0.5;
 }
 
+// SurfaceMesh::is_flip_ok with the valences this pass keeps up to date, and the search for
+// an existing edge c-d around whichever end has fewer edges: a vertex of huge valence (a stray
+// point far away gathers thousands of needles) must not make every flip test walk its fan.
+bool Remesher::Impl::flip_topology_ok(Edge e) const {
+  if (mesh.is_boundary(e)) return false;
+  Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+  Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
+  Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
+  if (c == d) return false;
+  if (!mesh.is_boundary(a) && valence[a.idx] <= 3) return false;
+  if (!mesh.is_boundary(b) && valence[b.idx] <= 3) return false;
+  Vertex from = valence[c.idx] <= valence[d.idx] ? c : d, to = from == c ? d : c;
+  for (Halfedge g : mesh.halfedges(from))
+    if (mesh.to_vertex(g) == to) return false;
+  return true;
+}
+
 size_t Remesher::Impl::flip_edges() {
   valence.resize(mesh.vertices_size());
   for (Vertex v : scope_vertices)
@@ -60,7 +77,7 @@ size_t Remesher::Impl::flip_edges() {
     int before = sq(va - ta) + sq(vb - tb) + sq(vc - tc) + sq(vd - td);
     int after = sq(va - 1 - ta) + sq(vb - 1 - tb) + sq(vc + 1 - tc) + sq(vd + 1 - td);
     if (after >= before) continue;
-    if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
+    if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
     --valence[a.idx];
     --valence[b.idx];
@@ -111,8 +128,12 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     if (sin_sum >= 0) continue;
     double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
     if (std::min(q1, q2) <= before) continue;
-    if (!mesh.is_flip_ok(e) || !flip_geometry_ok(e, true)) continue;
+    if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
+    --valence[va.idx];
+    --valence[vb.idx];
+    ++valence[vc.idx];
+    ++valence[vd.idx];
     // flip() keeps the face slots: f1 is now (a, d, c), f2 is (d, b, c).
     face_quality[f1.idx] = q1;
     face_quality[f2.idx] = q2;

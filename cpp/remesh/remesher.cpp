@@ -134,7 +134,12 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   // The curvature of a surface being dragged changes little from one frame to the next: the
   // sizing is measured again every few calls, and vertices added in between carry the mean
   // of their edge's ends (split_edge).
-  if (m.region_calls_since_sizing == 0) m.compute_sizing_from_current_surface(m.scope_vertices);
+  // A region that moves (a brush stroke) brings in vertices never measured (sizing 0, every
+  // measured value is at least min_length): with a zero target every edge there would be split
+  // again and again. Measure at once when one is in the scope.
+  bool unmeasured = false;
+  for (Vertex v : m.scope_vertices) unmeasured = unmeasured || !(m.sizing[v] > 0);
+  if (m.region_calls_since_sizing == 0 || unmeasured) m.compute_sizing_from_current_surface(m.scope_vertices);
   m.region_calls_since_sizing = (m.region_calls_since_sizing + 1) % kRegionSizingInterval;
   IterationStats stats = m.run_iteration(false);
   region.clear();

@@ -128,6 +128,7 @@ struct Remesher::Impl {
                             double min_cos = 0.5) const;
   double collapse_quality(Halfedge h) const;
   bool flip_geometry_ok(Edge e, bool require_flat) const;
+  bool flip_topology_ok(Edge e) const;  // needs `valence` current (flip passes)
   Vertex split_edge(Edge e, const Point& p);
   IterationStats run_iteration(bool project);
 };

@@ -14,6 +14,7 @@ namespace {
 constexpr double kSplitFactor = 4.0 / 3.0;
 constexpr double kCollapseFactor = 4.0 / 5.0;
 constexpr int kMaxSplitPasses = 10;
+constexpr int kRegionSplitPasses = 2;
 // Squared length / squared collapse threshold below which an edge may collapse to its midpoint.
 constexpr double kMidpointCollapseRatio = 0.25;
 
@@ -71,7 +72,10 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
 size_t Remesher::Impl::split_long_edges() {
   size_t splits = 0;
   gather_scope_edges();
-  for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
+  // A sculpting frame does bounded work: two passes (a long edge halves, then its halves may
+  // halve once more); later frames continue. A whole-mesh iteration splits until done.
+  const int passes = whole_mesh ? kMaxSplitPasses : kRegionSplitPasses;
+  for (int pass = 0; pass < passes; ++pass) {
     candidates.clear();
     for (Edge e : scope_edges) {
       double limit = kSplitFactor * target_length(e);
