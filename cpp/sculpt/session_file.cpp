@@ -96,6 +96,54 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
   if (g.contains("substeps")) s.substeps = positive_int(g["substeps"], ctx, "substeps");
   return s;
 }
+const char* const kAxes[] = {"x", "y", "z"};
+
+BrushStroke parse_brush(const json& b, const std::string& ctx) {
+  if (!b.is_object()) throw std::invalid_argument(ctx + "must be an object");
+  check_keys(b, ctx, {"tool", "path", "radius", "strength", "spacing", "symmetry", "invert", "pressure"});
+  for (const char* k : {"tool", "path", "radius"})
+    if (!b.contains(k)) fail(ctx, k, "is missing");
+  BrushStroke s;
+  deform::BrushSettings& st = s.settings;
+  const auto tool = b["tool"].is_string() ? deform::parse_brush_tool(b["tool"].get<std::string>()) : std::nullopt;
+  if (!tool) fail(ctx, "tool", std::string("must be one of ") + deform::brush_tool_list());
+  st.tool = *tool;
+  const json& path = b["path"];
+  if (!path.is_array() || path.empty()) fail(ctx, "path", "must be a non-empty array of [x,y,z] points");
+  for (size_t i = 0; i < path.size(); ++i) s.path.push_back(vec3(path[i], ctx, "path[" + std::to_string(i) + "]"));
+  st.radius = positive_number(b["radius"], ctx, "radius");
+  if (b.contains("strength")) {
+    const json& v = b["strength"];
+    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail(ctx, "strength", "must be a number between 0 and 1");
+    st.strength = v.get<double>();
+  }
+  if (b.contains("spacing")) {
+    const json& v = b["spacing"];
+    if (!v.is_number() || !(v.get<double>() >= 0.05 && v.get<double>() <= 4))
+      fail(ctx, "spacing", "must be a number between 0.05 and 4 (fraction of the radius)");
+    st.spacing = v.get<double>();
+  }
+  if (b.contains("symmetry")) {
+    const json& v = b["symmetry"];
+    const std::string a = v.is_string() ? v.get<std::string>() : "?";
+    st.symmetry_axis = a == "none" ? -1 : a == "x" ? 0 : a == "y" ? 1 : a == "z" ? 2 : -2;
+    if (st.symmetry_axis == -2) fail(ctx, "symmetry", "must be one of x, y, z, none");
+  }
+  if (b.contains("invert")) {
+    if (!b["invert"].is_boolean()) fail(ctx, "invert", "must be true or false");
+    st.invert = b["invert"].get<bool>();
+  }
+  if (b.contains("pressure")) {
+    const json& v = b["pressure"];
+    if (!v.is_array() || v.size() != path.size()) fail(ctx, "pressure", "must be an array with one number per path point");
+    for (const json& x : v) {
+      if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 1))
+        fail(ctx, "pressure", "must hold numbers between 0 and 1");
+      s.pressure.push_back(x.get<double>());
+    }
+  }
+  return s;
+}
 }  // namespace
 
 SettingsPatch parse_settings(const json& s, const std::string& ctx) {
@@ -154,7 +202,7 @@ SessionFile parse_session_file(const json& j) {
     ++i;
     const std::string at = "step " + std::to_string(i);
     if (!s.is_object() || s.size() != 1)
-      throw std::invalid_argument(at + ": must be an object with one key: grab, remesh, undo or redo");
+      throw std::invalid_argument(at + ": must be an object with one key: grab, brush, remesh, undo or redo");
     const std::string kind = s.begin().key();
     const json& v = s.begin().value();
     const std::string ctx = at + " (" + kind + "): ";
@@ -162,6 +210,9 @@ SessionFile parse_session_file(const json& j) {
     if (kind == "grab") {
       step.kind = SessionStep::Kind::Grab;
       step.grab = parse_grab(v, ctx);
+    } else if (kind == "brush") {
+      step.kind = SessionStep::Kind::Brush;
+      step.brush = parse_brush(v, ctx);
     } else if (kind == "remesh") {
       step.kind = SessionStep::Kind::Remesh;
       if (!v.is_object()) throw std::invalid_argument(ctx + "must be an object {\"iterations\": k}");
@@ -172,7 +223,7 @@ SessionFile parse_session_file(const json& j) {
       step.kind = kind == "undo" ? SessionStep::Kind::Undo : SessionStep::Kind::Redo;
       step.count = positive_int(v, ctx, kind);
     } else {
-      throw std::invalid_argument(at + ": unknown step '" + kind + "' (expected grab, remesh, undo or redo)");
+      throw std::invalid_argument(at + ": unknown step '" + kind + "' (expected grab, brush, remesh, undo or redo)");
     }
     f.steps.push_back(step);
   }
@@ -183,7 +234,8 @@ SessionFile parse_session_file(const std::string& text) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for numbers beyond double ("1e400").
     throw std::invalid_argument(std::string("session file: not valid JSON: ") + e.what());
   }
   return parse_session_file(j);
@@ -203,6 +255,21 @@ json to_json(const SessionFile& f) {
                      {"scale", g.scale},
                      {"substeps", g.substeps}};
         steps.push_back({{"grab", grab}});
+        break;
+      }
+      case SessionStep::Kind::Brush: {
+        const deform::BrushSettings& st = s.brush.settings;
+        json path = json::array();
+        for (const Point& p : s.brush.path) path.push_back({p.x, p.y, p.z});
+        json brush = {{"tool", deform::brush_tool_name(st.tool)},
+                      {"path", path},
+                      {"radius", st.radius},
+                      {"strength", st.strength},
+                      {"spacing", st.spacing},
+                      {"symmetry", st.symmetry_axis < 0 ? "none" : kAxes[st.symmetry_axis]},
+                      {"invert", st.invert}};
+        if (!s.brush.pressure.empty()) brush["pressure"] = s.brush.pressure;
+        steps.push_back({{"brush", brush}});
         break;
       }
       case SessionStep::Kind::Remesh:
