@@ -1,10 +1,41 @@
 #include "io/load_mesh.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <glm/common.hpp>
+
 #include "mesh/build_from_triangles.h"
 
 namespace adasculpt::io {
 
 namespace {
+
+// The geometry squares and multiplies lengths (areas, cotangents, curvature); beyond this range
+// those products overflow or vanish and every later step would fail with a puzzling message.
+constexpr double kMinExtent = 1e-60, kMaxExtent = 1e60;
+
+void check_extent(const mesh::SurfaceMesh& m, const std::string& name) {
+  Point lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (mesh::Vertex v : m.vertices()) {
+    lo = glm::min(lo, m.position(v));
+    hi = glm::max(hi, m.position(v));
+  }
+  const Vec3 extent = hi - lo;
+  const double largest = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y),
+                                   std::abs(hi.z)});
+  const double size = std::max({extent.x, extent.y, extent.z});
+  if (!(size >= kMinExtent) || !(largest <= kMaxExtent)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  ": coordinates out of the supported range (size %.3g, largest %.3g; supported %.0e to %.0e): "
+                  "rescale the model",
+                  size, largest, kMinExtent, kMaxExtent);
+    throw IoError(name + buf);
+  }
+}
 
 mesh::SurfaceMesh mesh_from_soup(const PolygonSoup& soup, const std::string& name,
                                  std::vector<std::string>* warnings) {
@@ -15,6 +46,7 @@ mesh::SurfaceMesh mesh_from_soup(const PolygonSoup& soup, const std::string& nam
   } catch (const mesh::TopologyError& e) {
     throw IoError(name + ": " + e.what());
   }
+  check_extent(result, name);
   if (warnings) {
     for (const std::string& w : soup.warnings) warnings->push_back(name + ": " + w);
     for (const std::string& w : report.warnings) warnings->push_back(name + ": " + w);
