@@ -281,6 +281,9 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
       if (glm::dot(dev, dev) > eps2) split_edges_.push_back(mesh.edge(h));
     }
   }
+  // Bounded work per frame: at most as many splits as free vertices (the largest deviations
+  // first would be nicer; the order of discovery is good enough, later frames continue).
+  if (split_edges_.size() > free_.size()) split_edges_.resize(free_.size());
   for (mesh::Edge e : split_edges_) {
     const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
     const double w = midpoint_field(a, b, mesh.position(a), mesh.position(b));

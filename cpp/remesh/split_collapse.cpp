@@ -1,6 +1,7 @@
 // Edge-length passes of a remeshing iteration: split edges longer than 4/3 L, collapse edges
 // shorter than 4/5 L (Botsch & Kobbelt 2004 thresholds, L from the sizing field).
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -75,7 +76,10 @@ size_t Remesher::Impl::split_long_edges() {
   // A sculpting frame does bounded work: two passes (a long edge halves, then its halves may
   // halve once more); later frames continue. A whole-mesh iteration splits until done.
   const int passes = whole_mesh ? kMaxSplitPasses : kRegionSplitPasses;
-  for (int pass = 0; pass < passes; ++pass) {
+  // At most doubling the region per frame, whatever the sizing says (a stray vertex far away
+  // makes every edge to it "long"): the work of one frame stays proportional to the region.
+  const size_t max_splits = whole_mesh ? SIZE_MAX : scope_vertices.size();
+  for (int pass = 0; pass < passes && splits < max_splits; ++pass) {
     candidates.clear();
     for (Edge e : scope_edges) {
       double limit = kSplitFactor * target_length(e);
@@ -88,6 +92,7 @@ size_t Remesher::Impl::split_long_edges() {
               [](const auto& x, const auto& y) { return x.first > y.first || (x.first == y.first && x.second < y.second); });
     const size_t first_new = scope_vertices.size();
     for (const auto& c : candidates) {
+      if (splits >= max_splits) break;
       Edge e = c.second;
       Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
       split_edge(e, mid);
