@@ -46,8 +46,10 @@ struct Session::Impl {
   size_t undo_bytes = 0;
 
   deform::HandleDeformer deformer;
-  std::unique_ptr<remesh::Remesher> remesher;  // alive during a grab only
+  std::unique_ptr<remesh::Remesher> remesher;  // alive during a grab or a stroke only
   bool grabbing = false;
+  BrushStroker brush;
+  bool brushing = false;
 
   mutable geometry::TriangleTree tree;  // of the current surface, built on demand
   mutable bool tree_valid = false;
@@ -80,10 +82,11 @@ struct Session::Impl {
       undo.pop_front();
     }
   }
+  // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
-    if (!grabbing) return;
-    grabbing = false;
-    deformer.end();
+    if (!grabbing && !brushing) return;
+    if (grabbing) deformer.end();
+    grabbing = brushing = false;
     remesher.reset();
     if (mesh.has_garbage()) {
       mesh.garbage_collection();  // renumbers: readers must start over
@@ -196,6 +199,52 @@ void Session::grab_drag(const deform::HandleTransform& total) {
 void Session::grab_end() { impl_->end_grab(); }
 bool Session::grabbing() const { return impl_->grabbing; }
 
+void Session::brush_begin(const deform::BrushSettings& settings) {
+  Impl& s = *impl_;
+  s.require_mesh("brush");
+  deform::check_brush_settings(settings);
+  s.end_grab();
+  s.brush.begin(settings);
+  s.push_undo();
+  s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  s.brushing = true;
+}
+
+void Session::brush_stamp(const Point& p, double pressure) {
+  Impl& s = *impl_;
+  if (!s.brushing) throw std::logic_error("brush_stamp: no stroke in progress (call brush_begin first)");
+  const auto t0 = Clock::now();
+  // Only the first sample of a stroke needs the tree; it is still valid then unless picking was
+  // never done, in which case it is built once for the stroke (as grab_begin does).
+  const geometry::TriangleTree* tree = s.brush.started() ? nullptr : &s.surface_tree();
+  BrushFrame frame;
+  frame.touched.swap(s.changes.touched_vertices);  // appends without copying
+  s.brush.sample(s.mesh, *s.remesher, tree, p, pressure, frame);
+  frame.touched.swap(s.changes.touched_vertices);
+  if (frame.topology_changed) s.changes.topology_changed = true;
+  if (frame.stamps > 0) s.tree_valid = false;
+  FrameTimings& f = s.last;
+  f = FrameTimings{};
+  f.roi_ms = frame.locate_ms;
+  f.deform_ms = frame.deform_ms;
+  f.remesh_ms = frame.remesh_ms;
+  f.total_ms = ms_since(t0);
+  f.stamps = frame.stamps;
+}
+
+void Session::brush_end() { impl_->end_grab(); }
+bool Session::brushing() const { return impl_->brushing; }
+
+void Session::brush_stroke(const BrushStroke& stroke) {
+  if (stroke.path.empty()) throw std::invalid_argument("brush: 'path' must hold at least one point");
+  if (!stroke.pressure.empty() && stroke.pressure.size() != stroke.path.size())
+    throw std::invalid_argument("brush: 'pressure' must have one value per path point");
+  brush_begin(stroke.settings);
+  for (size_t i = 0; i < stroke.path.size(); ++i)
+    brush_stamp(stroke.path[i], stroke.pressure.empty() ? 1.0 : stroke.pressure[i]);
+  brush_end();
+}
+
 void Session::remesh(int iterations) {
   Impl& s = *impl_;
   s.require_mesh("remesh");
@@ -237,8 +286,8 @@ bool Session::redo() {
   return true;
 }
 
-bool Session::can_undo() const { return !impl_->undo.empty() || impl_->grabbing; }
-bool Session::can_redo() const { return !impl_->redo.empty() && !impl_->grabbing; }
+bool Session::can_undo() const { return !impl_->undo.empty() || impl_->grabbing || impl_->brushing; }
+bool Session::can_redo() const { return !impl_->redo.empty() && !impl_->grabbing && !impl_->brushing; }
 
 nlohmann::json Session::replay(const nlohmann::json& session_file) {
   Impl& s = *impl_;
@@ -246,6 +295,18 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
   s.require_mesh("replay");
   set_settings(to_json(file.settings));
   std::vector<double> total, roi, field, refine, deform, rem;
+  // Brush frames have no field or refinement phase: they stay out of those medians.
+  auto record = [&](bool grab_frame) {
+    const FrameTimings& f = s.last;
+    total.push_back(f.total_ms);
+    roi.push_back(f.roi_ms);
+    if (grab_frame) {
+      field.push_back(f.field_ms);
+      refine.push_back(f.refine_ms);
+    }
+    deform.push_back(f.deform_ms);
+    rem.push_back(f.remesh_ms);
+  };
   for (const SessionStep& step : file.steps) {
     switch (step.kind) {
       case SessionStep::Kind::Grab: {
@@ -253,15 +314,19 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
         grab_begin(g.center, g.handle_radius, g.roi_radius);
         for (int i = 1; i <= g.substeps; ++i) {
           grab_drag(g.total_at(double(i) / g.substeps));
-          const FrameTimings& f = s.last;
-          total.push_back(f.total_ms);
-          roi.push_back(f.roi_ms);
-          field.push_back(f.field_ms);
-          refine.push_back(f.refine_ms);
-          deform.push_back(f.deform_ms);
-          rem.push_back(f.remesh_ms);
+          record(true);
         }
         grab_end();
+        break;
+      }
+      case SessionStep::Kind::Brush: {
+        const BrushStroke& b = step.brush;
+        brush_begin(b.settings);
+        for (size_t i = 0; i < b.path.size(); ++i) {
+          brush_stamp(b.path[i], b.pressure.empty() ? 1.0 : b.pressure[i]);
+          record(false);
+        }
+        brush_end();
         break;
       }
       case SessionStep::Kind::Remesh:

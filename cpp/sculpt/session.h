@@ -3,13 +3,14 @@
 // grab in progress and the undo history, and reports what each call changed and how long the
 // last frame took. The CLI (replay), the wasm bindings and the tests all drive the core through it.
 //
-// Undo model: every grab (grab_begin .. grab_end) and every whole-mesh remesh() is one undo step.
+// Undo model: every grab (grab_begin .. grab_end), every brush stroke (brush_begin .. brush_end)
+// and every whole-mesh remesh() is one undo step.
 // A step snapshots the mesh when it starts (a deep copy of the SurfaceMesh, compacted first), so
 // undo restores positions bit for bit and the exact connectivity. The history is bounded
 // (kMaxUndoSteps steps and kMaxUndoBytes bytes of snapshots; the oldest steps are dropped first).
 //
-// During a grab the mesh is never garbage-collected: it may contain deleted slots, and readers
-// must skip them (mesh().is_deleted(...)). grab_end() compacts it.
+// During a grab or a stroke the mesh is never garbage-collected: it may contain deleted slots, and
+// readers must skip them (mesh().is_deleted(...)). grab_end() and brush_end() compact it.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -22,12 +23,15 @@
 #include "geometry/quality.h"
 #include "io/mesh_io.h"
 #include "mesh/surface_mesh.h"
+#include "sculpt/brush.h"
 
 namespace adasculpt::sculpt {
 
-// Milliseconds spent in each phase of the last grab_drag() frame (or of the last remesh()).
+// Milliseconds spent in each phase of the last grab_drag() frame (or of the last remesh() or
+// brush_stamp(): roi = finding the surface under the brush, summed over its `stamps`).
 struct FrameTimings {
   double roi_ms = 0, field_ms = 0, refine_ms = 0, deform_ms = 0, remesh_ms = 0, total_ms = 0;
+  int stamps = 0;
 };
 
 // What changed since the last clear_changes(). topology_changed: faces or vertices were added or
@@ -79,6 +83,18 @@ class Session {
   // Ends the grab: compacts the mesh; the grab becomes one undo step.
   void grab_end();
   bool grabbing() const;
+
+  // Brush strokes (sculpt/brush.h). brush_begin ends a running grab or stroke and starts one undo
+  // step; throws std::invalid_argument on bad settings or without a mesh. Each brush_stamp is one
+  // pointer sample (a surface point, or for grab the pointer position in space); it runs the
+  // stamps due since the previous sample, each followed by one remeshing iteration on the
+  // brushed vertices plus a ring. brush_end compacts the mesh.
+  void brush_begin(const deform::BrushSettings& settings);
+  void brush_stamp(const Point& p, double pressure = 1);
+  void brush_end();
+  bool brushing() const;
+  // begin, one stamp call per path point, end: one undo step.
+  void brush_stroke(const BrushStroke& stroke);
 
   // Whole-mesh adaptive remeshing with projection onto the current surface; one undo step.
   void remesh(int iterations);

@@ -8,6 +8,8 @@
 //      {"grab": {"center": [x,y,z], "handle_radius": r, "roi_radius": R,
 //                "translate": [dx,dy,dz], "rotate": {"axis": [ax,ay,az], "degrees": a},
 //                "scale": s, "substeps": n}},
+//      {"brush": {"tool": "inflate", "path": [[x,y,z], ...], "radius": r, "strength": s,
+//                 "symmetry": "x", "spacing": f, "invert": false, "pressure": [p, ...]}},
 //      {"remesh": {"iterations": k}},
 //      {"undo": n}, {"redo": n}]}
 //
@@ -15,7 +17,8 @@
 // over `substeps` frames (frame i applies the fraction i/n of the translation, of the rotation
 // angle and of the scale change); translate, rotate, scale and substeps are optional (identity,
 // substeps 1). Lengths in settings are absolute or, as strings ending in '%', percent of the
-// bounding-box diagonal.
+// bounding-box diagonal. A brush stroke needs tool, path and radius (absolute); strength defaults
+// to 0.5, spacing to 0.25 (of the radius), symmetry to "none", pressure to 1 per path point.
 //
 // Every validation error is a std::invalid_argument with one line naming the step and field:
 //   "step 3 (grab): 'roi_radius' must be a positive number".
@@ -27,6 +30,7 @@
 
 #include "deform/handle_transform.h"
 #include "mesh/types.h"
+#include "sculpt/brush.h"
 
 namespace adasculpt::sculpt {
 
@@ -59,9 +63,10 @@ struct GrabStep {
 };
 
 struct SessionStep {
-  enum class Kind { Grab, Remesh, Undo, Redo } kind = Kind::Grab;
+  enum class Kind { Grab, Brush, Remesh, Undo, Redo } kind = Kind::Grab;
   GrabStep grab;  // Kind::Grab
   int count = 1;  // remesh iterations, undo / redo count
+  BrushStroke brush;  // Kind::Brush (last: {kind, grab, count} aggregate initialisers stay valid)
 };
 
 struct SessionFile {

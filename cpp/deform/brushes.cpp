@@ -1,0 +1,229 @@
+#include "deform/brushes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/normals.h"
+#include "geometry/triangle.h"
+
+namespace adasculpt::deform {
+
+namespace {
+// Displacement per stamp at full strength and falloff, as a fraction of the radius. With the
+// default spacing a point is under about 8 stamps as the brush passes over it: a full-strength
+// draw stroke raises a ridge of roughly half the radius, like common sculpting tools.
+constexpr double kDisplace = 0.1;
+// Fraction of the way to the stroke centre a pinch moves a vertex per stamp at full strength.
+// Kept well below 1 so that vertices near the centre do not pile up on it in one stamp.
+constexpr double kPinch = 0.25;
+
+const char* const kNames[] = {"draw", "inflate", "smooth", "flatten", "pinch", "crease", "grab"};
+
+// Twice the area-weighted normal of the faces around v (not normalised).
+Vec3 fan_normal(const SurfaceMesh& mesh, Vertex v) {
+  const Point& p = mesh.position(v);
+  Vec3 sum(0.0);
+  for (mesh::Halfedge h : mesh.halfedges(v)) {
+    if (mesh.is_boundary(h)) continue;
+    sum += glm::cross(mesh.position(mesh.to_vertex(h)) - p, mesh.position(mesh.to_vertex(mesh.next(h))) - p);
+  }
+  return sum;
+}
+
+Vec3 normalized_or_zero(const Vec3& v) {
+  const double len = glm::length(v);
+  return len > 0 ? v / len : Vec3(0.0);
+}
+}  // namespace
+
+const char* brush_tool_list() { return "draw, inflate, smooth, flatten, pinch, crease, grab"; }
+const char* brush_tool_name(BrushTool tool) { return kNames[static_cast<int>(tool)]; }
+
+std::optional<BrushTool> parse_brush_tool(const std::string& name) {
+  for (int i = 0; i < 7; ++i)
+    if (name == kNames[i]) return static_cast<BrushTool>(i);
+  return std::nullopt;
+}
+
+void check_brush_settings(const BrushSettings& s) {
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) throw std::invalid_argument("brush: 'radius' must be a positive number");
+  if (!(s.strength >= 0 && s.strength <= 1)) throw std::invalid_argument("brush: 'strength' must be between 0 and 1");
+  // Below 0.05 a stroke would cost hundreds of remeshing iterations per radius of travel.
+  if (!(s.spacing >= 0.05 && s.spacing <= 4)) throw std::invalid_argument("brush: 'spacing' must be between 0.05 and 4");
+  if (s.symmetry_axis < -1 || s.symmetry_axis > 2) throw std::invalid_argument("brush: 'symmetry' must be x, y, z or none");
+}
+
+double brush_falloff(double distance, double radius) {
+  if (!(distance < radius)) return 0;
+  const double q = distance / radius;
+  const double t = 1 - q * q;
+  return t * t * t;
+}
+
+Vertex walk_to_nearest_vertex(const SurfaceMesh& mesh, Vertex start, const Point& target) {
+  Vertex v = start;
+  Vec3 d = mesh.position(v) - target;
+  double best = glm::dot(d, d);
+  for (bool moved = true; moved;) {  // ends: the distance strictly decreases
+    moved = false;
+    for (Vertex w : mesh.vertices(v)) {
+      d = mesh.position(w) - target;
+      const double d2 = glm::dot(d, d);
+      if (d2 < best) {
+        best = d2;
+        v = w;
+        moved = true;
+      }
+    }
+  }
+  return v;
+}
+
+Point closest_point_around(const SurfaceMesh& mesh, Vertex v, const Point& p) {
+  Point best = mesh.position(v);
+  Vec3 d = best - p;
+  double best_d2 = glm::dot(d, d);
+  for (mesh::Face f : mesh.faces(v)) {
+    Vertex c[3];
+    mesh.face_vertices(f, c);
+    double bary[3];
+    const Point q = geometry::closest_point_on_triangle(p, mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]), bary);
+    d = q - p;
+    if (glm::dot(d, d) < best_d2) {
+      best_d2 = glm::dot(d, d);
+      best = q;
+    }
+  }
+  return best;
+}
+
+void BrushDeformer::grow(size_t n) {
+  if (mark_.size() >= n) return;
+  mark_.resize(n, 0);
+  in_stamp_.resize(n, 0);
+  sum_.resize(n, Vec3(0.0));
+  count_.resize(n, 0);
+}
+
+void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double radius) {
+  inside_.clear();
+  weight_.clear();
+  if (++stamp_run_ == 0) {
+    std::fill(in_stamp_.begin(), in_stamp_.end(), 0);
+    stamp_run_ = 1;
+  }
+  if (!s.seed.is_valid() || mesh.is_deleted(s.seed)) return;
+  const double r2 = radius * radius;
+  auto inside = [&](Vertex v) {
+    const Vec3 d = mesh.position(v) - s.center;
+    return glm::dot(d, d) < r2;
+  };
+  if (!inside(s.seed)) return;
+  in_stamp_[s.seed.idx] = stamp_run_;
+  inside_.push_back(s.seed);
+  for (size_t i = 0; i < inside_.size(); ++i)  // breadth-first: inside_ is the queue
+    for (Vertex w : mesh.vertices(inside_[i]))
+      if (in_stamp_[w.idx] != stamp_run_) {
+        in_stamp_[w.idx] = stamp_run_;
+        if (inside(w)) inside_.push_back(w);
+      }
+  for (Vertex v : inside_) weight_.push_back(brush_falloff(glm::length(mesh.position(v) - s.center), radius));
+}
+
+void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, const StampSpec& s) {
+  gather(mesh, s, st.radius);
+  if (inside_.empty()) return;
+  const double sign = st.invert ? -1.0 : 1.0;
+  const double amount = st.strength * s.pressure;
+
+  // Region plane: normal and centre weighted by area and falloff (draw, flatten, pinch, crease).
+  Vec3 normal(0.0);
+  Point centre(0.0);
+  double wsum = 0;
+  for (size_t k = 0; k < inside_.size(); ++k) {
+    normal += weight_[k] * fan_normal(mesh, inside_[k]);
+    centre += weight_[k] * mesh.position(inside_[k]);
+    wsum += weight_[k];
+  }
+  normal = normalized_or_zero(normal);
+  centre = wsum > 0 ? centre / wsum : s.center;
+
+  for (size_t k = 0; k < inside_.size(); ++k) {
+    const Vertex v = inside_[k];
+    const Point& p = mesh.position(v);
+    const double w = weight_[k] * amount;
+    Vec3 d(0.0);
+    switch (st.tool) {
+      case BrushTool::Draw:
+        d = (sign * kDisplace * st.radius * w) * normal;
+        break;
+      case BrushTool::Inflate:
+        d = (sign * kDisplace * st.radius * w) * geometry::vertex_normal(mesh, v);
+        break;
+      case BrushTool::Smooth: {
+        if (mesh.is_boundary(v)) break;  // a Laplacian step would shrink the border
+        Point c(0.0);
+        int n = 0;
+        for (Vertex u : mesh.vertices(v)) {
+          c += mesh.position(u);
+          ++n;
+        }
+        if (n > 0) d = w * (c / double(n) - p);
+        break;
+      }
+      case BrushTool::Flatten:
+        d = (-sign * w * glm::dot(p - centre, normal)) * normal;
+        break;
+      case BrushTool::Pinch:
+      case BrushTool::Crease: {
+        Vec3 t = s.center - p;
+        t -= glm::dot(t, normal) * normal;  // in the tangent plane only: pinching must not dig
+        if (st.tool == BrushTool::Pinch) {
+          d = (sign * kPinch * w) * t;
+        } else {
+          // Inverted, a crease is a pinched ridge: the pinch stays, the draw goes outward.
+          d = (kPinch * w) * t - (sign * 0.5 * kDisplace * st.radius * w) * normal;
+        }
+        break;
+      }
+      case BrushTool::Grab:
+        d = weight_[k] * s.grab_delta;
+        break;
+    }
+    if (mark_[v.idx] != run_) {
+      mark_[v.idx] = run_;
+      sum_[v.idx] = Vec3(0.0);
+      count_[v.idx] = 0;
+      touched_.push_back(v);
+    }
+    sum_[v.idx] += d;
+    count_[v.idx] = std::uint8_t(std::min(255, count_[v.idx] + 1));
+  }
+}
+
+std::vector<Vertex>& BrushDeformer::apply(SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec* stamps,
+                                          int n) {
+  grow(mesh.vertices_size());
+  if (++run_ == 0) {
+    std::fill(mark_.begin(), mark_.end(), 0);
+    run_ = 1;
+  }
+  touched_.clear();
+  for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
+  for (Vertex v : touched_) mesh.position(v) += sum_[v.idx] / double(count_[v.idx]);
+  moved_ = touched_.size();
+  region_ = touched_;
+  for (Vertex v : touched_)
+    for (Vertex w : mesh.vertices(v))
+      if (mark_[w.idx] != run_) {
+        mark_[w.idx] = run_;
+        region_.push_back(w);
+      }
+  return region_;
+}
+
+}  // namespace adasculpt::deform

@@ -1,0 +1,84 @@
+#pragma once
+// Sculpting brushes: one stamp = a displacement of the vertices within the brush radius of a
+// surface point, weighted by a smooth falloff. The stroke logic (spacing along the pointer path,
+// mirror symmetry, the remeshing iteration after each stamp) lives in sculpt/brush.h.
+//
+// The vertices under a stamp are found by a flood from the vertex nearest to the centre through
+// vertices inside the brush sphere, so the work is proportional to the brushed area and a thin
+// part's far side (inside the sphere but not connected through it) is left alone.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::deform {
+
+using mesh::SurfaceMesh;
+using mesh::Vertex;
+
+enum class BrushTool { Draw, Inflate, Smooth, Flatten, Pinch, Crease, Grab };
+
+// "draw, inflate, smooth, flatten, pinch, crease, grab" (for error messages).
+const char* brush_tool_list();
+const char* brush_tool_name(BrushTool tool);
+std::optional<BrushTool> parse_brush_tool(const std::string& name);
+
+struct BrushSettings {
+  BrushTool tool = BrushTool::Draw;
+  double radius = 0;      // absolute length
+  double strength = 0.5;  // 0..1; pressure multiplies it (grab ignores both: it follows the pointer)
+  double spacing = 0.25;  // a stamp every spacing * radius of pointer travel
+  bool invert = false;    // draw/inflate/crease inward, flatten/pinch push away; smooth, grab: no effect
+  int symmetry_axis = -1; // 0, 1, 2: mirror across the plane x, y or z = 0; -1: none
+};
+// Throws std::invalid_argument "brush: 'radius' must be a positive number" and the like.
+void check_brush_settings(const BrushSettings& s);
+
+// (1 - (d/r)^2)^3 inside the radius, 0 outside: smooth at the rim, flat at the centre.
+double brush_falloff(double distance, double radius);
+
+// Walks from `start` to neighbours that are strictly closer to `target` until none is; the
+// vertex reached. Cheap between successive stamps, which are a fraction of a radius apart.
+Vertex walk_to_nearest_vertex(const SurfaceMesh& mesh, Vertex start, const Point& target);
+// The closest point to p on the faces around v.
+Point closest_point_around(const SurfaceMesh& mesh, Vertex v, const Point& p);
+
+// One stamp as seen by the deformer: where, which vertex to flood from, how hard.
+struct StampSpec {
+  Point center{0.0};
+  Vertex seed;             // a vertex near the centre (walk_to_nearest_vertex)
+  Vec3 grab_delta{0.0};    // grab only: how far the pointer moved since the previous stamp
+  double pressure = 1;
+};
+
+class BrushDeformer {
+ public:
+  // Applies the stamps together: every displacement is computed from the positions before any
+  // of them moves, and a vertex under several stamps moves by their mean (a stamp and its mirror
+  // image overlapping at the symmetry plane then stay symmetric and do not add up).
+  // Returns the brushed vertices plus one ring around them (for Remesher::iterate_region).
+  std::vector<Vertex>& apply(SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec* stamps, int n);
+  // Vertices moved by the last apply() (without the ring).
+  size_t moved() const { return moved_; }
+
+ private:
+  void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius);
+  void displace(const SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec& s);
+  bool marked(Vertex v) const { return v.idx < mark_.size() && mark_[v.idx] == run_; }
+  void grow(size_t n);
+
+  // Per vertex slot, valid when mark_ == run_ / in_stamp_ == stamp_run_ (never cleared in full).
+  std::vector<std::uint32_t> mark_, in_stamp_;
+  std::vector<Vec3> sum_;         // accumulated displacement
+  std::vector<std::uint8_t> count_;  // stamps contributing
+  std::uint32_t run_ = 0, stamp_run_ = 0;
+  std::vector<Vertex> inside_;     // of the current stamp
+  std::vector<double> weight_;     // falloff per inside_ entry
+  std::vector<Vertex> touched_;    // union over the stamps
+  std::vector<Vertex> region_;     // touched_ + ring
+  size_t moved_ = 0;
+};
+
+}  // namespace adasculpt::deform

@@ -1,0 +1,161 @@
+#include "sculpt/brush.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/aabb_tree.h"
+#include "remesh/remesher.h"
+
+namespace adasculpt::sculpt {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// A fast pointer can cross many radii between two samples; past this many stamps per sample the
+// spacing widens for that segment so that one frame stays bounded.
+constexpr int kMaxStampsPerSample = 32;
+
+// The surface point closest to p and a vertex near it (the triangle's corner with the largest
+// barycentric weight, then walked to the vertex nearest the point).
+mesh::Vertex locate(const mesh::SurfaceMesh& mesh, const geometry::TriangleTree& tree, const Point& p, Point* on_surface) {
+  if (tree.empty()) throw std::invalid_argument("brush: the mesh has no non-degenerate face");
+  const auto hit = tree.closest_point(p);
+  mesh::Vertex c[3];
+  mesh.face_vertices(tree.face_of(hit.triangle), c);
+  const int k = int(std::max_element(hit.bary, hit.bary + 3) - hit.bary);
+  *on_surface = hit.point;
+  return deform::walk_to_nearest_vertex(mesh, c[k], hit.point);
+}
+
+Vec3 mirrored(Vec3 v, int axis) {
+  v[axis] = -v[axis];
+  return v;
+}
+}  // namespace
+
+void BrushStroker::begin(const deform::BrushSettings& settings) {
+  deform::check_brush_settings(settings);
+  settings_ = settings;
+  started_ = false;
+  travelled_ = 0;
+  seed_ = mirror_seed_ = mesh::Vertex();
+  last_region_.clear();
+}
+
+mesh::Vertex BrushStroker::reseed(const mesh::SurfaceMesh& mesh, mesh::Vertex seed, const Point& target) const {
+  if (!seed.is_valid() || mesh.is_deleted(seed) || mesh.is_isolated(seed)) {
+    // The remesher collapsed it: restart from the nearest survivor of the last stamp's region.
+    seed = mesh::Vertex();
+    double best = std::numeric_limits<double>::infinity();
+    for (mesh::Vertex v : last_region_) {
+      if (mesh.is_deleted(v) || mesh.is_isolated(v)) continue;
+      const Vec3 d = mesh.position(v) - target;
+      if (glm::dot(d, d) < best) {
+        best = glm::dot(d, d);
+        seed = v;
+      }
+    }
+    if (!seed.is_valid()) throw std::logic_error("brush: lost track of the surface under the brush");
+  }
+  return deform::walk_to_nearest_vertex(mesh, seed, target);
+}
+
+void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const geometry::TriangleTree* tree,
+                          const Point& p, double pressure, BrushFrame& frame) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    throw std::invalid_argument("brush: the point must be finite");
+  pressure = std::clamp(std::isfinite(pressure) ? pressure : 1.0, 0.0, 1.0);
+  if (!started_) {
+    if (!tree) throw std::logic_error("brush: the first sample needs the surface tree");
+    const auto t0 = Clock::now();
+    Point c0;
+    seed_ = locate(mesh, *tree, p, &c0);
+    if (symmetric()) {
+      Point unused;
+      mirror_seed_ = locate(mesh, *tree, mirror(c0), &unused);
+    }
+    frame.locate_ms += ms_between(t0, Clock::now());
+    started_ = true;
+    last_sample_ = p;
+    last_pressure_ = pressure;
+    travelled_ = 0;
+    if (settings_.tool == deform::BrushTool::Grab) {
+      grab_centre_ = c0;
+      grab_target_ = p;
+    } else {
+      stamp(mesh, remesher, p, pressure, frame);
+    }
+    return;
+  }
+  const Vec3 seg = p - last_sample_;
+  const double len = glm::length(seg);
+  const double step = std::max(settings_.spacing * settings_.radius, len / kMaxStampsPerSample);
+  double s = step - travelled_;
+  if (s > len) {
+    travelled_ += len;
+  } else {
+    double last = 0;
+    for (; s <= len; s += step) {
+      const double t = s / len;
+      stamp(mesh, remesher, last_sample_ + t * seg, last_pressure_ + t * (pressure - last_pressure_), frame);
+      last = s;
+    }
+    travelled_ = len - last;
+  }
+  last_sample_ = p;
+  last_pressure_ = pressure;
+}
+
+void BrushStroker::stamp(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& target, double pressure,
+                         BrushFrame& f) {
+  const auto t0 = Clock::now();
+  deform::StampSpec specs[2];
+  deform::StampSpec& s = specs[0];
+  s.pressure = pressure;
+  if (settings_.tool == deform::BrushTool::Grab) {
+    // Snake hook: the vertices under the brush where the surface was follow the pointer.
+    s.grab_delta = target - grab_target_;
+    grab_target_ = target;
+    seed_ = reseed(mesh, seed_, grab_centre_);
+    s.center = grab_centre_;
+    grab_centre_ += s.grab_delta;
+  } else {
+    seed_ = reseed(mesh, seed_, target);
+    s.center = deform::closest_point_around(mesh, seed_, target);
+  }
+  s.seed = seed_;
+  int n = 1;
+  if (symmetric()) {
+    // The mirror stamp is the exact mirror image of the first (centre and direction), so a
+    // symmetric mesh stays symmetric.
+    deform::StampSpec& m = specs[n++];
+    m.center = mirror(s.center);
+    m.grab_delta = mirrored(s.grab_delta, settings_.symmetry_axis);
+    m.pressure = pressure;
+    mirror_seed_ = reseed(mesh, mirror_seed_, m.center);
+    m.seed = mirror_seed_;
+  }
+  const auto t1 = Clock::now();
+  std::vector<mesh::Vertex>& region = deformer_.apply(mesh, settings_, specs, n);
+  const auto t2 = Clock::now();
+  const size_t faces_before = mesh.faces_size();
+  const remesh::IterationStats st = remesher.iterate_region(region);
+  const auto t3 = Clock::now();
+  if (st.splits + st.collapses + st.flips > 0 || mesh.faces_size() != faces_before) f.topology_changed = true;
+  f.touched.insert(f.touched.end(), region.begin(), region.end());
+  last_region_ = region;
+  ++f.stamps;
+  f.locate_ms += ms_between(t0, t1);
+  f.deform_ms += ms_between(t1, t2);
+  f.remesh_ms += ms_between(t2, t3);
+}
+
+}  // namespace adasculpt::sculpt

@@ -1,0 +1,73 @@
+#pragma once
+// Brush strokes with dynamic topology: the pointer path is cut into stamps every
+// spacing * radius of travel; each stamp (and its mirror image when symmetry is on) is one
+// deformation step (deform/brushes.h) followed by ONE local remeshing iteration on the brushed
+// vertices plus a ring, the same interleaving as a grab frame (PAPER.md section 4).
+//
+// Nothing global happens per stamp: the stamp's vertex is found by walking from the previous
+// stamp's vertex (only the first stamp of a stroke asks the surface's AABB tree), and the mesh is
+// not garbage-collected until the stroke ends (the Session does that).
+#include <vector>
+
+#include "deform/brushes.h"
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::geometry {
+class TriangleTree;
+}
+namespace adasculpt::remesh {
+class Remesher;
+}
+
+namespace adasculpt::sculpt {
+
+// A whole stroke, as in session files: {"brush": {"tool": ..., "path": [...], "radius": r, ...}}.
+struct BrushStroke {
+  deform::BrushSettings settings;
+  std::vector<Point> path;
+  std::vector<double> pressure;  // one per path point, or empty (= 1)
+};
+
+// What the stamps of one sample() cost and changed.
+struct BrushFrame {
+  int stamps = 0;
+  double locate_ms = 0, deform_ms = 0, remesh_ms = 0;
+  bool topology_changed = false;
+  std::vector<mesh::Vertex> touched;  // brushed vertices + ring after remeshing, appended per stamp
+};
+
+class BrushStroker {
+ public:
+  void begin(const deform::BrushSettings& settings);
+  // One pointer sample. The first sample of a stroke stamps at once (grab: only picks up the
+  // surface there); later ones stamp every spacing * radius along the segment from the previous
+  // sample, with the pressure interpolated. `tree` (of the current surface) is only read while
+  // no stamp has run yet; pass nullptr afterwards. Appends to `frame`.
+  void sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const geometry::TriangleTree* tree,
+              const Point& p, double pressure, BrushFrame& frame);
+  bool started() const { return started_; }
+  const deform::BrushSettings& settings() const { return settings_; }
+  deform::BrushDeformer& deformer() { return deformer_; }
+
+ private:
+  void stamp(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& target, double pressure, BrushFrame& f);
+  mesh::Vertex reseed(const mesh::SurfaceMesh& mesh, mesh::Vertex seed, const Point& target) const;
+  Point mirror(Point p) const {
+    p[settings_.symmetry_axis] = -p[settings_.symmetry_axis];
+    return p;
+  }
+  bool symmetric() const { return settings_.symmetry_axis >= 0; }
+
+  deform::BrushSettings settings_;
+  deform::BrushDeformer deformer_;
+  bool started_ = false;
+  Point last_sample_{0.0};
+  double last_pressure_ = 1;
+  double travelled_ = 0;  // path length since the last stamp
+  mesh::Vertex seed_, mirror_seed_;
+  Point grab_centre_{0.0};  // grab: the surface point being dragged (moves with the pointer)
+  Point grab_target_{0.0};  // grab: the path point of the last stamp
+  std::vector<mesh::Vertex> last_region_;  // for re-seeding when a seed was collapsed away
+};
+
+}  // namespace adasculpt::sculpt
