@@ -211,8 +211,6 @@ function parity(input, name) {
 }
 const noCli = skip || (!cli && 'no native build/native/adasculpt');
 test('same counts as the native replay: sphere', { skip: noCli }, () => parity(path.join(root, 'public', 'models', 'sphere.obj'), 'sphere.obj'));
-// Known divergence (reported to the core): the two targets agree on fandisk for up to 4 grab frames
-// and on a whole-mesh remesh, then differ (8759 vs 8750 vertices after 5 frames): floating-point
-// results that are not bit-identical between the native and the wasm build accumulate over frames.
-test('same counts as the native replay: fandisk', { skip: noCli, todo: 'native/wasm divergence after 5 grab frames on fandisk' },
-  () => parity(fandiskPath, 'fandisk.off'));
+// Bit-identical since the core's angles, curvature, slerp and AABB layout stopped depending on the
+// platform's libm and standard library (geometry/portable_math.h); fandisk diverged after 5 frames before.
+test('same counts as the native replay: fandisk', { skip: noCli }, () => parity(fandiskPath, 'fandisk.off'));
