@@ -57,11 +57,11 @@ bool Remesher::Impl::flip_topology_ok(Edge e) const {
   return true;
 }
 
+// Uses scope_edges as collapse_short_edges left them (collapses delete edges but create none).
 size_t Remesher::Impl::flip_edges() {
   valence.resize(mesh.vertices_size());
   for (Vertex v : scope_vertices)
     if (!mesh.is_deleted(v)) valence[v.idx] = static_cast<int>(mesh.valence(v));
-  gather_scope_edges();
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
@@ -90,8 +90,8 @@ size_t Remesher::Impl::flip_edges() {
 
 // Flips that raise the smaller of the two triangles' minimum angles, for pairs containing a
 // poor triangle: the valence flips leave a few of these where the sizing changes quickly.
+// Uses scope_edges as the flip pass left them (flips create no edges).
 size_t Remesher::Impl::flip_for_angles(double poor_angle) {
-  gather_scope_edges();
   const double poor_sin2 = portable::sin(poor_angle) * portable::sin(poor_angle);
   // Each face's smallest-angle measure once, not once per edge: most edges of a good mesh
   // are rejected by these two lookups alone.
@@ -105,7 +105,7 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     for (mesh::Face f : mesh.faces()) face_quality[f.idx] = quality_of(f);
   } else {
     for (Edge e : scope_edges)
-      for (unsigned i = 0; i < 2; ++i) {
+      for (unsigned i = 0; i < 2 && !mesh.is_deleted(e); ++i) {
         mesh::Face f = mesh.face(mesh.halfedge(e, i));
         if (f.is_valid()) face_quality[f.idx] = quality_of(f);
       }

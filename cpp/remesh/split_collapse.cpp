@@ -197,6 +197,8 @@ double Remesher::Impl::collapse_quality(Halfedge h) const {
   return worst;
 }
 
+// Gathers the scope's edges once more (the splits added some); the flip passes after it reuse
+// the list, since neither collapses nor flips create edges.
 size_t Remesher::Impl::collapse_short_edges() {
   gather_scope_edges();
   candidates.clear();
