@@ -201,22 +201,7 @@ test('epsilon in the panel + remesh whole mesh changes the resolution', async ({
   await expect.poll(async () => (await stats(page)).vertices, { timeout: 30_000 }).toBeLessThan(fine.vertices * 0.7);
 });
 
-// web/embed.html is a second vite page: the production build has it only when vite.config.mjs lists
-// it in build.rollupOptions.input (under `npx vite` dev it is always served).
-const embedBuilt = fs.existsSync(path.join(root, 'dist', 'embed.html'));
-test('the embed example runs two independent instances; dispose removes one', async ({ page }) => {
-  test.skip(!embedBuilt, 'dist/embed.html not built (add web/embed.html to build.rollupOptions.input)');
-  const errors = watchErrors(page);
-  await page.goto('/embed.html');
-  await page.waitForFunction(() => document.documentElement.dataset.ready === 'true', null, { timeout: 30_000 });
-  const counts = await page.evaluate(() => [window.embedded.left.stats().vertices, window.embedded.right.stats().vertices]);
-  expect(counts).toEqual([2562, 6475]);
-  await shot(page, 'embed-two-instances');
-  await page.click('#dispose');
-  expect(await page.locator('canvas').count()).toBe(1);
-  expect(await page.evaluate(() => window.embedded.left.stats().vertices)).toBe(2562);
-  expect(errors).toEqual([]);
-});
+// The embed example and <adasculpt-viewer>: e2e/embed.spec.mjs.
 
 test('dispose frees the app: repeated create/dispose leaves no canvas, listener or error behind', async ({ page }) => {
   const errors = watchErrors(page);

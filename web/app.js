@@ -118,11 +118,15 @@ export async function createSculptApp(container, options = {}) {
     setParams(p = {}) {
       const keys = { epsilon: 'epsilon', minLength: 'min_length', maxLength: 'max_length', features: 'features' };
       const s = {};
+      const radius = {}; // handleRadius, roiRadius: the grab tool's defaults, kept in percent like the panel
       for (const [k, v] of Object.entries(p)) {
-        if (!(k in keys)) throw new Error(`setParams: unknown parameter '${k}'`);
-        s[keys[k]] = v;
+        if (k === 'handleRadius' || k === 'roiRadius') radius[k] = percentOfDiagonal(v, k, diagonal);
+        else if (!(k in keys)) throw new Error(`setParams: unknown parameter '${k}'`);
+        else s[keys[k]] = v;
       }
       session.setSettings(JSON.stringify(s));
+      Object.assign(state, radius);
+      if (radius.handleRadius !== undefined || radius.roiRadius !== undefined) tool.updateBrush();
       return readSettings();
     },
 
@@ -408,6 +412,14 @@ function toVec3(v, what) {
   if (Array.isArray(v) && v.length === 3 && v.every(Number.isFinite)) return new THREE.Vector3(v[0], v[1], v[2]);
   if (v && [v.x, v.y, v.z].every(Number.isFinite)) return new THREE.Vector3(v.x, v.y, v.z);
   throw new Error(`${what}: expected [x, y, z]`);
+}
+
+// A length given as a number (absolute) or "x%" (of the diagonal), in percent of the diagonal.
+function percentOfDiagonal(v, what, diagonal) {
+  const pct = typeof v === 'string' && v.trim().endsWith('%');
+  const x = pct ? Number(v.trim().slice(0, -1)) : Number(v);
+  if (!Number.isFinite(x) || x <= 0) throw new Error(`setParams: ${what} must be a positive number or "x%"`);
+  return pct ? x : (x / diagonal) * 100;
 }
 
 function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }

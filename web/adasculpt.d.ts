@@ -1,0 +1,135 @@
+// Type declarations for `import { createSculptApp } from 'adasculpt'` (web/app.js), hand-written.
+// The custom element (`import 'adasculpt/element'`) is declared in viewer-element.d.ts.
+
+/** A 3-vector: `[x, y, z]` or anything with numeric x, y, z (e.g. a THREE.Vector3). */
+export type Vec3 = [number, number, number] | { x: number; y: number; z: number };
+
+/** A length: a number is absolute (model units), a string `"0.05%"` is percent of the bounding-box diagonal. */
+export type Length = number | `${number}%`;
+
+export type MeshFormat = 'obj' | 'stl' | 'ply' | 'off';
+
+/** What `load` accepts: a URL (fetched), a File/Blob, or the file's bytes. */
+export type MeshSource = string | URL | Blob | ArrayBuffer | ArrayBufferView;
+
+export interface SculptAppOptions {
+  /** URL of the first model; `null` for none. Default: the bundled sphere (`models/sphere.obj`). */
+  model?: string | null;
+  /**
+   * URL of the WebAssembly loader script `adasculpt.js` (adasculpt.wasm must sit next to it).
+   * Default: `wasm/adasculpt.js` relative to the page (`document.baseURI`). The script is injected
+   * once per page; every app gets its own module instance (own wasm memory).
+   */
+  wasmUrl?: string;
+  /** Panel, stats overlay and help line. Default `true`. */
+  ui?: boolean;
+  /** `'global'`: keyboard shortcuts on `window`; default `'focus'`: only while the app has the focus. */
+  keyboard?: 'global' | 'focus';
+}
+
+export interface SculptParams {
+  /** Approximation tolerance (the method's one parameter). */
+  epsilon?: Length;
+  minLength?: Length;
+  maxLength?: Length;
+  /** Feature-edge dihedral angle in degrees; 0 = off. */
+  features?: number;
+  /** Default grab radii (geodesic) for mouse grabs and `grab.begin` without radii. */
+  handleRadius?: Length;
+  roiRadius?: Length;
+}
+
+/** The core's settings, absolute lengths. */
+export interface CoreSettings {
+  epsilon: number;
+  min_length: number;
+  max_length: number;
+  features: number;
+  diagonal: number;
+}
+
+export interface GrabBegin {
+  /** Snapped to the closest surface point. */
+  center: Vec3;
+  /** Absolute lengths; default: the panel's radii. */
+  handleRadius?: number;
+  roiRadius?: number;
+}
+
+/** The total transform since `grab.begin` (not an increment). */
+export interface GrabTransform {
+  translate?: Vec3;
+  rotate?: { axis: Vec3; degrees: number };
+  scale?: number;
+}
+
+export interface FrameTimings {
+  roi: number; field: number; refine: number; deform: number; remesh: number; total: number;
+  /** Render-buffer update in wasm after the core's work. */
+  buffers: number;
+}
+
+export interface SculptStats {
+  vertices: number;
+  faces: number;
+  minAngle: number | null;
+  meanMinAngle: number | null;
+  lastFrameMs: number;
+  coreMs: number;
+  buffersMs: number;
+  phasesMs: Partial<FrameTimings>;
+  uploadMs: number;
+  renderMs: number;
+  /** `performance.now()` of the first frame that showed a mesh. */
+  firstRenderMs: number | null;
+  wasmReadyMs: number;
+  canUndo: boolean;
+  canRedo: boolean;
+  settings: CoreSettings;
+  /** The core's quality report (angles, valences, edge lengths, ...). */
+  quality: Record<string, unknown>;
+}
+
+/** The same JSON object as `adasculpt replay --json` prints. */
+export type ReplayReport = Record<string, unknown>;
+
+export interface FrameLogEntry {
+  coreMs: number; buffersMs: number; copyMs: number; renderMs: number; totalMs: number;
+  phases: Partial<FrameTimings>;
+  vertices: number;
+}
+
+/** The page API: `window.app` on the standalone page, or what `createSculptApp` resolves to. */
+export interface SculptApp {
+  /** Replaces the mesh (undo history and settings reset). Rejects with the reader's message; the mesh stays. */
+  load(source: MeshSource, format?: MeshFormat): Promise<{ vertices: number; faces: number }>;
+  /** Throws on an unknown key or a bad value (nothing changes then). Returns the core's settings. */
+  setParams(params: SculptParams): CoreSettings;
+  readonly grab: {
+    begin(args: GrabBegin): void;
+    /** One frame: deform, refine, remesh the region; returns the mesh size and the frame's timings. */
+    drag(transform: GrabTransform): { vertices: number; faces: number; timings: FrameTimings };
+    /** The grab becomes one undo step. */
+    end(): void;
+  };
+  /** Whole-mesh remeshing, one iteration per animation frame, each one undo step. */
+  remesh(options?: { iterations?: number }): Promise<SculptStats>;
+  undo(): boolean;
+  redo(): boolean;
+  /** Runs a session file (`{"version":1,"settings":{...},"steps":[...]}`) on the current mesh. */
+  replay(session: string | object): Promise<ReplayReport>;
+  stats(): SculptStats;
+  /** The current mesh as a file: OBJ/OFF with round-trip (17 digit) coordinates, binary PLY with doubles, STL (float32 by the format). */
+  export(format?: MeshFormat): Promise<ArrayBuffer>;
+  bounds(): { min: [number, number, number]; max: [number, number, number] };
+  /** The per-grab-frame timings since the last call (benchmarks). */
+  takeFrameLog(): FrameLogEntry[];
+  /** Frees the wasm Session and instance, GPU resources (geometries, materials, textures, the WebGL context), the DOM it added and every listener. Idempotent. */
+  dispose(): void;
+  /** The Emscripten module instance of this app (advanced use). */
+  readonly module: unknown;
+  /** The embind `Session` of this app (advanced use; deleted by `dispose`). */
+  readonly session: unknown;
+}
+
+export function createSculptApp(container: HTMLElement, options?: SculptAppOptions): Promise<SculptApp>;

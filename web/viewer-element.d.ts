@@ -1,0 +1,25 @@
+// Type declarations for `import 'adasculpt/element'` (web/viewer-element.js), hand-written.
+import type { SculptApp } from './adasculpt';
+
+export type { SculptApp } from './adasculpt';
+
+/**
+ * `<adasculpt-viewer src="model.obj" epsilon="0.05%" min-length="0.2%" max-length="5%" features="45"
+ * handle-radius="4%" roi-radius="15%" ui="off" wasm-url="/wasm/adasculpt.js">`.
+ * Attribute changes apply to the running app; removing the element disposes it.
+ */
+export declare class AdasculptViewerElement extends HTMLElement {
+  static readonly observedAttributes: string[];
+  /** The page API once `adasculpt-ready` has fired; `null` before and after removal. */
+  readonly app: SculptApp | null;
+}
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'adasculpt-viewer': AdasculptViewerElement;
+  }
+  interface HTMLElementEventMap {
+    'adasculpt-ready': CustomEvent<SculptApp>;
+    'adasculpt-error': CustomEvent<Error>;
+  }
+}
