@@ -1,6 +1,7 @@
 // End-to-end tests in headless Debian Chromium (/usr/bin/chromium; no `npx playwright install` needed or
 // possible here) against the production build served by `vite preview` (run `npx vite build` first:
-// scripts/test.sh does). ADASCULPT_E2E_PORT picks another port when 4173 is busy.
+// scripts/test.sh does). ADASCULPT_E2E_PORT picks another port when 4173 is busy; ADASCULPT_DIST (see
+// vite.config.mjs) serves another build folder.
 import { defineConfig } from '@playwright/test';
 
 const port = Number(process.env.ADASCULPT_E2E_PORT || 4173);
