@@ -1,0 +1,335 @@
+// Shared pieces of the brush comparison with three.js's Sculptor addon (issue #7):
+// tests/bench/sculptor-compare.mjs (the benchmark) and tests/js/brush-quality.test.mjs (our quality
+// targets) both use them.
+//
+// - the same mesh goes into both: it is loaded by adasculpt's wasm Session and its positions and
+//   indices are handed to Sculptor as a BufferGeometry (Sculptor welds; the mesh is already welded);
+// - a stroke is a line of parallel rays (an orthographic view): Sculptor gets the rays
+//   (strokeFromRay, one stamp per call), adasculpt gets the points where those rays hit the
+//   initial surface as the stroke path, spaced so that each path point is exactly one stamp;
+// - quality is measured by ONE function on both final meshes (brushedRegionMetrics).
+import fs from 'node:fs';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+import { fileURLToPath } from 'node:url';
+
+export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+
+// ---------------------------------------------------------------------------------------------
+// adasculpt (the wasm module in public/wasm, or ADASCULPT_WASM_DIR)
+
+export async function loadAdasculpt(wasmDir = process.env.ADASCULPT_WASM_DIR || path.join(ROOT, 'public', 'wasm')) {
+  const js = path.join(wasmDir, 'adasculpt.js');
+  const wasm = path.join(wasmDir, 'adasculpt.wasm');
+  if (!fs.existsSync(js) || !fs.existsSync(wasm)) return null;
+  const create = createRequire(import.meta.url)(js);
+  return create({ wasmBinary: fs.readFileSync(wasm) });
+}
+
+// {positions: Float64Array, indices: Uint32Array} of a mesh file, read by adasculpt's own loader.
+export function readMesh(M, file) {
+  const s = new M.Session();
+  try {
+    s.loadBytes(new Uint8Array(fs.readFileSync(file)), path.basename(file));
+    return { positions: Float64Array.from(s.positions()), indices: Uint32Array.from(s.indices()) };
+  } finally {
+    s.delete();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// geometry helpers (plain arrays; no three.js needed)
+
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const norm = (a) => Math.hypot(a[0], a[1], a[2]);
+const normalize = (a) => scale(a, 1 / norm(a));
+const vert = (P, i) => [P[3 * i], P[3 * i + 1], P[3 * i + 2]];
+
+export function boundingBox(P) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < P.length; i += 3)
+    for (let k = 0; k < 3; ++k) {
+      lo[k] = Math.min(lo[k], P[i + k]);
+      hi[k] = Math.max(hi[k], P[i + k]);
+    }
+  return { lo, hi, diagonal: norm(sub(hi, lo)), centre: scale(add(lo, hi), 0.5) };
+}
+
+// Nearest hit (distance t > 0) of the ray o + t d on the mesh, brute force (Möller–Trumbore,
+// both sides); null when it misses.
+export function raycast(mesh, o, d) {
+  const P = mesh.positions, F = mesh.indices;
+  let best = Infinity;
+  for (let f = 0; f < F.length; f += 3) {
+    const a = vert(P, F[f]), b = vert(P, F[f + 1]), c = vert(P, F[f + 2]);
+    const e1 = sub(b, a), e2 = sub(c, a), p = cross(d, e2), det = dot(e1, p);
+    if (Math.abs(det) < 1e-300) continue;
+    const inv = 1 / det, s = sub(o, a), u = dot(s, p) * inv;
+    if (u < 0 || u > 1) continue;
+    const q = cross(s, e1), v = dot(d, q) * inv;
+    if (v < 0 || u + v > 1) continue;
+    const t = dot(e2, q) * inv;
+    if (t > 0 && t < best) best = t;
+  }
+  return best === Infinity ? null : add(o, scale(d, best));
+}
+
+function distanceToSegment2(p, a, b) {
+  const ab = sub(b, a), ap = sub(p, a), l2 = dot(ab, ab);
+  const t = l2 > 0 ? Math.max(0, Math.min(1, dot(ap, ab) / l2)) : 0;
+  const d = sub(ap, scale(ab, t));
+  return dot(d, d);
+}
+function distanceToPolyline(p, line) {
+  if (line.length === 1) return norm(sub(p, line[0]));
+  let best = Infinity;
+  for (let i = 1; i < line.length; ++i) best = Math.min(best, distanceToSegment2(p, line[i - 1], line[i]));
+  return Math.sqrt(best);
+}
+
+// ---------------------------------------------------------------------------------------------
+// strokes
+
+// A stroke seen from direction `view` (unit, pointing from the eye into the scene): a line across
+// the mesh's bounding box through its centre, perpendicular to the view, `across` being the
+// in-screen direction, from -span/2 to +span/2 times the diagonal, with a sine wiggle of
+// `wiggle` times the diagonal so that it is not a straight cut. Returns the rays whose hits on
+// the initial surface are spacing * radius apart (3D chord), i.e. one stamp each, and those hits.
+export function makeStroke(mesh, { view, across, span = 0.5, wiggle = 0.05, offset = 0, radius, spacing = 0.25 }) {
+  const bb = boundingBox(mesh.positions);
+  const d = normalize(view);
+  const u = normalize(sub(across, scale(d, dot(across, d))));
+  const w = cross(d, u);
+  const far = 2 * bb.diagonal;
+  const rayAt = (s) => {
+    // s in [-1/2, 1/2]: position along the stroke, in units of span * diagonal
+    const x = s * span * bb.diagonal;
+    const y = offset * bb.diagonal + wiggle * bb.diagonal * Math.sin(2 * Math.PI * s);
+    const o = add(add(add(bb.centre, scale(u, x)), scale(w, y)), scale(d, -far));
+    return { origin: o, direction: d };
+  };
+  // Dense hits, then points at chord distance `step` along them. The step is a hair longer than
+  // spacing * radius so that adasculpt's stroker (a stamp each time the travelled length reaches
+  // spacing * radius) stamps exactly once per path point despite rounding.
+  const step = spacing * radius * (1 + 1e-6);
+  const dense = [];
+  const n = 2000;
+  for (let i = 0; i <= n; ++i) {
+    const r = rayAt(i / n - 0.5);
+    const hit = raycast(mesh, r.origin, r.direction);
+    if (hit) dense.push({ s: i / n - 0.5, hit });
+  }
+  if (dense.length < 2) throw new Error('stroke misses the mesh');
+  const rays = [], path = [];
+  const push = (s, hit) => {
+    rays.push(rayAt(s));
+    path.push(hit);
+  };
+  push(dense[0].s, dense[0].hit);
+  for (let i = 1; i < dense.length; ++i) {
+    const last = path[path.length - 1];
+    if (norm(sub(dense[i].hit, last)) < step) continue;
+    // bisect between dense[i-1] and dense[i] for the point at chord distance `step`
+    let lo = dense[i - 1].s, hi = dense[i].s, hitHi = dense[i].hit;
+    for (let k = 0; k < 40; ++k) {
+      const mid = 0.5 * (lo + hi), r = rayAt(mid), h = raycast(mesh, r.origin, r.direction);
+      if (h && norm(sub(h, last)) >= step) {
+        hi = mid;
+        hitHi = h;
+      } else {
+        lo = mid;
+      }
+    }
+    push(hi, hitHi);
+    --i;  // the next point may lie before dense[i] still
+  }
+  return { rays, path, radius, spacing, view: d };
+}
+
+// ---------------------------------------------------------------------------------------------
+// the shared quality measure
+
+// The brushed region on a FINAL mesh: the stroke's rays are cast again on that mesh, and a face
+// belongs to the region when its centroid lies within `radius` of the polyline through those hits
+// (a ray that now misses is left out). Interior vertices: vertices of region faces that are within
+// `radius` of the polyline and not on a mesh boundary; valence = number of incident edges.
+// Returns min angle, share of triangles under 30°, share of interior vertices of valence 5-7,
+// mean edge length (edges of region faces), counts.
+export function brushedRegionMetrics(mesh, stroke) {
+  const P = mesh.positions, F = mesh.indices, r = stroke.radius;
+  const line = stroke.rays.map((ray) => raycast(mesh, ray.origin, ray.direction)).filter(Boolean);
+  const nv = P.length / 3;
+  const valence = new Uint32Array(nv);
+  const edgeFaces = new Map();  // undirected edge -> face count (boundary: 1)
+  const key = (a, b) => (a < b ? a * nv + b : b * nv + a);
+  for (let f = 0; f < F.length; f += 3)
+    for (let k = 0; k < 3; ++k) {
+      const e = key(F[f + k], F[f + (k + 1) % 3]);
+      edgeFaces.set(e, (edgeFaces.get(e) || 0) + 1);
+    }
+  const onBoundary = new Uint8Array(nv);
+  for (const [e, c] of edgeFaces) {
+    const a = Math.floor(e / nv), b = e % nv;
+    ++valence[a];
+    ++valence[b];
+    if (c === 1) onBoundary[a] = onBoundary[b] = 1;
+  }
+  let faces = 0, under30 = 0, minAngle = 180, sumMin = 0;
+  const inRegionVertex = new Uint8Array(nv);
+  const regionEdges = new Set();
+  for (let f = 0; f < F.length; f += 3) {
+    const ids = [F[f], F[f + 1], F[f + 2]];
+    const [a, b, c] = ids.map((i) => vert(P, i));
+    const centroid = scale(add(add(a, b), c), 1 / 3);
+    if (distanceToPolyline(centroid, line) >= r) continue;
+    ++faces;
+    const ang = (p, q, s) => {
+      const u = sub(q, p), v = sub(s, p);
+      return (Math.atan2(norm(cross(u, v)), dot(u, v)) * 180) / Math.PI;
+    };
+    const m = Math.min(ang(a, b, c), ang(b, c, a), ang(c, a, b));
+    minAngle = Math.min(minAngle, m);
+    sumMin += m;
+    if (m < 30) ++under30;
+    for (let k = 0; k < 3; ++k) {
+      if (distanceToPolyline(vert(P, ids[k]), line) < r) inRegionVertex[ids[k]] = 1;
+      regionEdges.add(key(ids[k], ids[(k + 1) % 3]));
+    }
+  }
+  let interior = 0, regular = 0;
+  for (let v = 0; v < nv; ++v) {
+    if (!inRegionVertex[v] || onBoundary[v]) continue;
+    ++interior;
+    if (valence[v] >= 5 && valence[v] <= 7) ++regular;
+  }
+  let edgeSum = 0;
+  for (const e of regionEdges) edgeSum += norm(sub(vert(P, Math.floor(e / nv)), vert(P, e % nv)));
+  return {
+    faces,
+    minAngle: faces ? minAngle : NaN,
+    meanMinAngle: faces ? sumMin / faces : NaN,
+    pctUnder30: faces ? (100 * under30) / faces : NaN,
+    interior,
+    pctValence5to7: interior ? (100 * regular) / interior : NaN,
+    meanEdge: regionEdges.size ? edgeSum / regionEdges.size : NaN,
+    totalFaces: F.length / 3,
+  };
+}
+
+// ---------------------------------------------------------------------------------------------
+// the tools both have, and how strengths map so that one stamp moves the surface by the same
+// amount at the brush centre (from the two implementations' constants: Sculptor pinch 0.05 and
+// crease 0.07 per unit strength, adasculpt pinch/crease 0.25 tangential; draw and inflate are
+// 0.1 * radius in both, flatten and smooth a fraction of the distance in both)
+
+export const TOOLS = {
+  draw: { sculptor: 'brush', strength: 0.5, ours: 0.5 },
+  inflate: { sculptor: 'inflate', strength: 0.5, ours: 0.5 },
+  smooth: { sculptor: 'smooth', strength: 0.5, ours: 0.5 },
+  flatten: { sculptor: 'flatten', strength: 0.5, ours: 0.5 },
+  pinch: { sculptor: 'pinch', strength: 0.75, ours: 0.75 * (0.05 / 0.25) },
+  crease: { sculptor: 'crease', strength: 0.75, ours: 0.75 * (0.07 / 0.25) },
+};
+
+// ---------------------------------------------------------------------------------------------
+// adasculpt side: Session.replay of {"brush": ...} steps
+
+// `strokes`: [{tool, stroke}] applied in order on one fresh copy of `mesh`. `length`: the uniform
+// target edge length (min_length = max_length), absolute. Returns the final mesh, the wall time
+// of the replay call per stamp (minus an empty replay's: settings and JSON) and the core's
+// per-stamp median (frame_ms_median: one path point = one stamp here).
+export function runOurs(M, mesh, strokes, { length, epsilon }) {
+  const settings = { min_length: length, max_length: length };
+  if (epsilon) settings.epsilon = epsilon;
+  const steps = strokes.map(({ tool, stroke }) => ({
+    brush: {
+      tool,
+      path: stroke.path,
+      radius: stroke.radius,
+      strength: TOOLS[tool].ours,
+      spacing: stroke.spacing,
+    },
+  }));
+  const stamps = strokes.reduce((n, s) => n + s.stroke.path.length, 0);
+  const s = new M.Session();
+  try {
+    s.loadArrays(mesh.positions, mesh.indices);
+    const empty = JSON.stringify({ version: 1, settings, steps: [] });
+    const full = JSON.stringify({ version: 1, settings, steps });
+    let t0 = performance.now();
+    s.replay(empty);
+    const emptyMs = performance.now() - t0;
+    t0 = performance.now();
+    const rep = JSON.parse(s.replay(full));
+    const ms = performance.now() - t0 - emptyMs;
+    return {
+      mesh: { positions: Float64Array.from(s.positions()), indices: Uint32Array.from(s.indices()) },
+      stamps,
+      msPerStamp: ms / stamps,
+      stampMedian: rep.frame_ms_median,
+      report: rep,
+    };
+  } finally {
+    s.delete();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sculptor side (three.js addon, imported from node_modules at run time; CPU only, no renderer)
+
+let THREE = null, Sculptor = null;
+export async function loadSculptor() {
+  if (!Sculptor) {
+    THREE = await import('three');
+    ({ Sculptor } = await import('three/addons/misc/Sculptor.js'));
+  }
+  return { THREE, Sculptor };
+}
+
+// Same contract as runOurs. `detail`: Sculptor's adaptive-topology detail (0..1): it splits
+// edges longer than radius * sqrt(0.2 (1.1 - detail)) and collapses those shorter than that
+// over 2.05, within the brush.
+export function runSculptor(mesh, strokes, { detail }) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(mesh.positions), 3));
+  geometry.setIndex(new THREE.BufferAttribute(Uint32Array.from(mesh.indices), 1));
+  const object = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial());
+  const sculptor = new Sculptor(object, new THREE.PerspectiveCamera());
+  sculptor.setDetail(detail);
+  const ray = new THREE.Ray();
+  const perStamp = [];
+  let ms = 0, stamps = 0, missed = 0;
+  for (const { tool, stroke } of strokes) {
+    sculptor.setTool(TOOLS[tool].sculptor).setStrength(TOOLS[tool].strength);
+    const t0 = performance.now();
+    for (const r of stroke.rays) {
+      ray.origin.set(...r.origin);
+      ray.direction.set(...r.direction);
+      const a = performance.now();
+      if (!sculptor.strokeFromRay(ray, stroke.radius)) ++missed;
+      perStamp.push(performance.now() - a);
+      ++stamps;
+    }
+    sculptor.endStroke();
+    ms += performance.now() - t0;
+  }
+  const out = sculptor.getGeometry();
+  sculptor.dispose();
+  perStamp.sort((a, b) => a - b);
+  return {
+    mesh: { positions: out.getAttribute('position').array, indices: out.getIndex().array },
+    stamps,
+    missed,
+    msPerStamp: ms / stamps,
+    stampMedian: perStamp[Math.floor(perStamp.length / 2)],
+  };
+}
+
+export const median = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
+};
