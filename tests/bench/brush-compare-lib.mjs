@@ -150,6 +150,25 @@ export function makeStroke(mesh, { view, across, span = 0.5, wiggle = 0.05, offs
   return { rays, path, radius, spacing, view: d };
 }
 
+// A snake-hook grab: pick the surface where the ray at `start` (fraction of the diagonal along
+// `across` from the bounding-box centre) hits, then pull that point `pull` * radius further along
+// `across`, in the view plane (the depth stays: what an orthographic pointer drag does). The path
+// is the dragged point every spacing * radius (one stamp each after the pick-up); `regionLine`
+// (the path itself: the hook follows it) replaces the rays in brushedRegionMetrics.
+export function makeGrab(mesh, { view, across, start = 0.25, pull = 3, radius, spacing = 0.15 }) {
+  const bb = boundingBox(mesh.positions);
+  const d = normalize(view);
+  const u = normalize(sub(across, scale(d, dot(across, d))));
+  let hit = null;
+  for (let s = start; !hit && s > 0; s -= 0.01)
+    hit = raycast(mesh, add(add(bb.centre, scale(u, s * bb.diagonal)), scale(d, -2 * bb.diagonal)), d);
+  if (!hit) throw new Error('grab misses the mesh');
+  const step = spacing * radius * (1 + 1e-6);
+  const path = [];
+  for (let k = 0; k * step <= pull * radius; ++k) path.push(add(hit, scale(u, k * step)));
+  return { kind: 'drag', path, regionLine: path, rays: [], radius, spacing, view: d, centre: bb.centre, diagonal: bb.diagonal };
+}
+
 // ---------------------------------------------------------------------------------------------
 // the shared quality measure
 
@@ -158,10 +177,12 @@ export function makeStroke(mesh, { view, across, span = 0.5, wiggle = 0.05, offs
 // (a ray that now misses is left out). Interior vertices: vertices of region faces that are within
 // `radius` of the polyline and not on a mesh boundary; valence = number of incident edges.
 // Returns min angle, share of triangles under 30°, share of interior vertices of valence 5-7,
-// mean edge length (edges of region faces), counts.
-export function brushedRegionMetrics(mesh, stroke) {
+// mean edge length (edges of region faces), counts; and the share of triangles under 30° in the
+// rim just outside the region (centroid between 1 and `rimOuter` radii from the polyline), where
+// a remeshed region meets the untouched mesh.
+export function brushedRegionMetrics(mesh, stroke, { rimOuter = 1.5 } = {}) {
   const P = mesh.positions, F = mesh.indices, r = stroke.radius;
-  const line = stroke.rays.map((ray) => raycast(mesh, ray.origin, ray.direction)).filter(Boolean);
+  const line = stroke.regionLine || stroke.rays.map((ray) => raycast(mesh, ray.origin, ray.direction)).filter(Boolean);
   const nv = P.length / 3;
   const valence = new Uint32Array(nv);
   const edgeFaces = new Map();  // undirected edge -> face count (boundary: 1)
@@ -178,20 +199,26 @@ export function brushedRegionMetrics(mesh, stroke) {
     ++valence[b];
     if (c === 1) onBoundary[a] = onBoundary[b] = 1;
   }
-  let faces = 0, under30 = 0, minAngle = 180, sumMin = 0;
+  let faces = 0, under30 = 0, minAngle = 180, sumMin = 0, rimFaces = 0, rimUnder30 = 0;
   const inRegionVertex = new Uint8Array(nv);
   const regionEdges = new Set();
   for (let f = 0; f < F.length; f += 3) {
     const ids = [F[f], F[f + 1], F[f + 2]];
     const [a, b, c] = ids.map((i) => vert(P, i));
     const centroid = scale(add(add(a, b), c), 1 / 3);
-    if (distanceToPolyline(centroid, line) >= r) continue;
-    ++faces;
+    const dist = distanceToPolyline(centroid, line);
+    if (dist >= rimOuter * r) continue;
     const ang = (p, q, s) => {
       const u = sub(q, p), v = sub(s, p);
       return (Math.atan2(norm(cross(u, v)), dot(u, v)) * 180) / Math.PI;
     };
     const m = Math.min(ang(a, b, c), ang(b, c, a), ang(c, a, b));
+    if (dist >= r) {
+      ++rimFaces;
+      if (m < 30) ++rimUnder30;
+      continue;
+    }
+    ++faces;
     minAngle = Math.min(minAngle, m);
     sumMin += m;
     if (m < 30) ++under30;
@@ -216,6 +243,8 @@ export function brushedRegionMetrics(mesh, stroke) {
     interior,
     pctValence5to7: interior ? (100 * regular) / interior : NaN,
     meanEdge: regionEdges.size ? edgeSum / regionEdges.size : NaN,
+    rimFaces,
+    pctUnder30Rim: rimFaces ? (100 * rimUnder30) / rimFaces : NaN,
     totalFaces: F.length / 3,
   };
 }
@@ -233,6 +262,9 @@ export const TOOLS = {
   flatten: { sculptor: 'flatten', strength: 0.5, ours: 0.5 },
   pinch: { sculptor: 'pinch', strength: 0.75, ours: 0.75 * (0.05 / 0.25) },
   crease: { sculptor: 'crease', strength: 0.75, ours: 0.75 * (0.07 / 0.25) },
+  // Snake hook: both move the vertices under the brush by the pointer's motion times the falloff;
+  // strength is ignored by both.
+  grab: { sculptor: 'drag', strength: 0.5, ours: 0.5 },
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -243,7 +275,7 @@ export const TOOLS = {
 // of the replay call per stamp (minus an empty replay's: settings and JSON) and the core's
 // per-stamp median (frame_ms_median: one path point = one stamp here).
 export function runOurs(M, mesh, strokes, { length, epsilon }) {
-  const settings = { min_length: length, max_length: length };
+  const settings = length ? { min_length: length, max_length: length } : {};
   if (epsilon) settings.epsilon = epsilon;
   const steps = strokes.map(({ tool, stroke }) => ({
     brush: {
@@ -254,7 +286,7 @@ export function runOurs(M, mesh, strokes, { length, epsilon }) {
       spacing: stroke.spacing,
     },
   }));
-  const stamps = strokes.reduce((n, s) => n + s.stroke.path.length, 0);
+  const stamps = strokes.reduce((n, s) => n + s.stroke.path.length - (s.stroke.kind === 'drag' ? 1 : 0), 0);
   const s = new M.Session();
   try {
     s.loadArrays(mesh.positions, mesh.indices);
@@ -305,6 +337,13 @@ export function runSculptor(mesh, strokes, { detail }) {
   let ms = 0, stamps = 0, missed = 0;
   for (const { tool, stroke } of strokes) {
     sculptor.setTool(TOOLS[tool].sculptor).setStrength(TOOLS[tool].strength);
+    if (stroke.kind === 'drag') {
+      const r = dragWithPointer(sculptor, object, stroke, perStamp);
+      ms += r.ms;
+      stamps += r.stamps;
+      missed += r.missed;
+      continue;
+    }
     const t0 = performance.now();
     for (const r of stroke.rays) {
       ray.origin.set(...r.origin);
@@ -327,6 +366,50 @@ export function runSculptor(mesh, strokes, { detail }) {
     msPerStamp: ms / stamps,
     stampMedian: perStamp[Math.floor(perStamp.length / 2)],
   };
+}
+
+// Sculptor's drag needs pointer input: an orthographic camera looking along the stroke's view
+// direction, a stand-in element (its listeners are called directly) whose pixels map to world
+// units so that the brush size in pixels is the stroke's radius, and one pointermove per stamp
+// (Sculptor stamps every 0.15 * size pixels of pointer travel; the moves are that far apart).
+function dragWithPointer(sculptor, object, stroke, perStamp) {
+  const SIZE = 50;  // pixels
+  const half = stroke.diagonal;  // half the view's width in world units
+  const W = (SIZE * 2 * half) / stroke.radius;  // element width in pixels: SIZE px = radius
+  const camera = new THREE.OrthographicCamera(-half, half, half, -half, 0.01 * half, 8 * half);
+  const c = new THREE.Vector3(...stroke.centre), d = new THREE.Vector3(...stroke.view);
+  camera.up.set(Math.abs(d.y) > 0.9 ? 1 : 0, Math.abs(d.y) > 0.9 ? 0 : 1, 0);
+  camera.position.copy(c).addScaledVector(d, -4 * half);
+  camera.lookAt(c);
+  camera.updateMatrixWorld(true);
+  const listeners = {};
+  const element = {
+    addEventListener: (type, fn) => (listeners[type] = fn),
+    removeEventListener: (type) => delete listeners[type],
+    getBoundingClientRect: () => ({ left: 0, top: 0, width: W, height: W }),
+  };
+  const previousCamera = sculptor.camera;
+  sculptor.camera = camera;
+  sculptor.connect(element);
+  sculptor.setSize(SIZE);
+  const px = (p) => {
+    const v = new THREE.Vector3(...p).project(camera);
+    return { clientX: (v.x * 0.5 + 0.5) * W, clientY: (-v.y * 0.5 + 0.5) * W };
+  };
+  const ev = (p) => ({ button: 0, isPrimary: true, pointerId: 1, ...px(p) });
+  const t0 = performance.now();
+  listeners.pointerdown(ev(stroke.path[0]));
+  const missed = sculptor.isSculpting() ? 0 : stroke.path.length - 1;
+  for (let k = 1; k < stroke.path.length; ++k) {
+    const a = performance.now();
+    listeners.pointermove(ev(stroke.path[k]));
+    perStamp.push(performance.now() - a);
+  }
+  listeners.pointerup(ev(stroke.path[stroke.path.length - 1]));
+  const ms = performance.now() - t0;
+  sculptor.disconnect();
+  sculptor.camera = previousCamera;
+  return { ms, stamps: stroke.path.length - 1, missed };
 }
 
 export const median = (xs) => {

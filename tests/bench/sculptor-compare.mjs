@@ -79,6 +79,8 @@ for (const spec of MESHES) {
   );
 
   const cases = TOOL_ORDER.map((t) => ({ label: t, strokes: [{ tool: t, stroke }] }));
+  const grab = L.makeGrab(mesh, { view: spec.view, across: spec.across, start: 0.25, pull: 3, radius });
+  cases.push({ label: 'grab (snake hook, 3 radii)', strokes: [{ tool: 'grab', stroke: grab }] });
   cases.push({ label: 'all six in turn', strokes: SESSION_ORDER.map((t) => ({ tool: t, stroke })) });
   for (const c of cases) {
     // One untimed warm-up run of each (JIT, wasm tier-up), then REPEATS timed runs.
@@ -116,7 +118,7 @@ for (const spec of MESHES) {
     const row = (who, m, runs, extra) =>
       rows.push(
         `| ${spec.name} | ${c.label} | ${who} | ${stamps} | ${f(m.meanEdge, 4)} | ${m.faces} | ${f(m.minAngle, 1)} | ` +
-          `${f(m.pctUnder30, 1)} | ${f(m.pctValence5to7, 1)} | ${f(L.median(runs.map((x) => x.msPerStamp)), 2)} | ` +
+          `${f(m.pctUnder30, 1)} | ${f(m.pctValence5to7, 1)} | ${f(m.pctUnder30Rim, 1)} | ${f(L.median(runs.map((x) => x.msPerStamp)), 2)} | ` +
           `${f(L.median(runs.map((x) => x.stampMedian)), 2)} | ${extra} |`,
       );
     row('Sculptor', sm, S, '');
@@ -127,9 +129,9 @@ for (const spec of MESHES) {
 
 console.log(`\nBrushes vs three.js Sculptor (three ${(await import('three')).REVISION}), node ${process.version}, ` +
   `${REPEATS} timed run(s) after a warm-up, medians; region = faces whose centroid is within the brush radius of the ` +
-  `stroke (its rays cast again on the final surface)\n`);
-console.log('| mesh | stroke | who | stamps | mean edge in region | faces in region | min angle | % < 30° | % interior valence 5–7 | ms/stamp (stroke wall) | ms/stamp (median stamp) | native ms/stamp (median) |');
-console.log('|---|---|---|---|---|---|---|---|---|---|---|---|');
+  `stroke (its rays cast again on the final surface; grab: of the dragged path), rim = faces between 1 and 1.5 radii from it\n`);
+console.log('| mesh | stroke | who | stamps | mean edge in region | faces in region | min angle | % < 30° | % interior valence 5–7 | rim: % < 30° | ms/stamp (stroke wall) | ms/stamp (median stamp) | native ms/stamp (median) |');
+console.log('|---|---|---|---|---|---|---|---|---|---|---|---|---|');
 for (const r of rows) console.log(r);
 console.log('');
 for (const n of notes) console.log(`- ${n}`);
