@@ -59,12 +59,52 @@ export function boundingBox(P) {
   return { lo, hi, diagonal: norm(sub(hi, lo)), centre: scale(add(lo, hi), 0.5) };
 }
 
-// Nearest hit (distance t > 0) of the ray o + t d on the mesh, brute force (Möller–Trumbore,
-// both sides); null when it misses.
+// Nearest hit (distance t > 0) of the ray o + t d on the mesh (Möller–Trumbore, both sides); null
+// when it misses. The faces are bucketed once per mesh and ray direction in a grid over the plane
+// perpendicular to d (a stroke's rays are parallel), so a ray tests only the faces of its cell.
+const grids = new WeakMap();
+function gridFor(mesh, d) {
+  let byDir = grids.get(mesh);
+  if (!byDir) grids.set(mesh, (byDir = new Map()));
+  const k = d.join(',');
+  let g = byDir.get(k);
+  if (g) return g;
+  const P = mesh.positions, F = mesh.indices, nf = F.length / 3;
+  const a = Math.abs(d[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+  const u = normalize(cross(d, a)), w = cross(d, u);
+  const nv = P.length / 3, pu = new Float64Array(nv), pw = new Float64Array(nv);
+  let lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+  for (let i = 0; i < nv; ++i) {
+    const p = vert(P, i);
+    pu[i] = dot(p, u);
+    pw[i] = dot(p, w);
+    lo = [Math.min(lo[0], pu[i]), Math.min(lo[1], pw[i])];
+    hi = [Math.max(hi[0], pu[i]), Math.max(hi[1], pw[i])];
+  }
+  const n = Math.max(1, Math.min(1024, Math.ceil(Math.sqrt(nf / 2))));
+  const cu = (hi[0] - lo[0]) / n || 1, cw = (hi[1] - lo[1]) / n || 1;
+  const cells = Array.from({ length: n * n }, () => []);
+  const clampCell = (x) => Math.max(0, Math.min(n - 1, Math.floor(x)));
+  for (let f = 0; f < nf; ++f) {
+    const ids = [F[3 * f], F[3 * f + 1], F[3 * f + 2]];
+    const us = ids.map((i) => pu[i]), ws = ids.map((i) => pw[i]);
+    const i0 = clampCell((Math.min(...us) - lo[0]) / cu), i1 = clampCell((Math.max(...us) - lo[0]) / cu);
+    const j0 = clampCell((Math.min(...ws) - lo[1]) / cw), j1 = clampCell((Math.max(...ws) - lo[1]) / cw);
+    for (let i = i0; i <= i1; ++i) for (let j = j0; j <= j1; ++j) cells[i * n + j].push(f);
+  }
+  g = { u, w, lo, cu, cw, n, cells };
+  byDir.set(k, g);
+  return g;
+}
+
 export function raycast(mesh, o, d) {
   const P = mesh.positions, F = mesh.indices;
+  const g = gridFor(mesh, d);
+  const iu = Math.floor((dot(o, g.u) - g.lo[0]) / g.cu), iw = Math.floor((dot(o, g.w) - g.lo[1]) / g.cw);
+  if (iu < 0 || iw < 0 || iu >= g.n || iw >= g.n) return null;
   let best = Infinity;
-  for (let f = 0; f < F.length; f += 3) {
+  for (const f3 of g.cells[iu * g.n + iw]) {
+    const f = 3 * f3;
     const a = vert(P, F[f]), b = vert(P, F[f + 1]), c = vert(P, F[f + 2]);
     const e1 = sub(b, a), e2 = sub(c, a), p = cross(d, e2), det = dot(e1, p);
     if (Math.abs(det) < 1e-300) continue;

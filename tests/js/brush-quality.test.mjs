@@ -16,9 +16,17 @@ const MESHES = [
   { name: 'hemisphere', file: path.join(L.ROOT, 'public', 'models', 'hemisphere.off'), view: [0, 0, -1], across: [1, 0, 0] },
 ];
 const CASES = [
-  ...Object.keys(L.TOOLS).map((t) => [t]),
+  ...Object.keys(L.TOOLS).map((t) => [t]),  // draw, inflate, smooth, flatten, pinch, crease, grab
   ['draw', 'inflate', 'crease', 'pinch', 'flatten', 'smooth'],
 ];
+
+function checkTargets(what, m, before, length) {
+  assert.ok(m.faces > 0 && m.interior > 0, `${what}: a region`);
+  assert.ok(m.meanEdge < 1.25 * length && m.meanEdge > 0.75 * length, `${what}: edge length near ${length}`);
+  assert.ok(m.pctUnder30 <= 10, `${what}: at most 10 % of the triangles under 30°`);
+  assert.ok(m.pctValence5to7 >= 90, `${what}: at least 90 % of interior vertices of valence 5-7`);
+  assert.ok(m.minAngle > 10, `${what}: no sliver`);
+}
 
 for (const spec of MESHES) {
   test(`brushed region quality on ${spec.name}`, { skip }, async (t) => {
@@ -30,17 +38,48 @@ for (const spec of MESHES) {
     // so every stroke refines its region.
     const length = 0.2 * radius;
     assert.ok(length < 0.9 * before.meanEdge, 'the stroke must refine the region');
+    const grab = L.makeGrab(mesh, { view: spec.view, across: spec.across, start: 0.25, pull: 3, radius });
     for (const tools of CASES) {
       await t.test(tools.join(' + '), () => {
-        const ours = L.runOurs(M, mesh, tools.map((tool) => ({ tool, stroke })), { length });
-        const m = L.brushedRegionMetrics(ours.mesh, stroke);
-        const what = `${spec.name} ${tools.join('+')}: ${JSON.stringify(m)}`;
-        assert.ok(m.faces > before.faces, `${what}: the region was refined`);
-        assert.ok(m.meanEdge < 1.25 * length && m.meanEdge > 0.75 * length, `${what}: edge length near ${length}`);
-        assert.ok(m.pctUnder30 <= 10, `${what}: at most 10 % of the triangles under 30°`);
-        assert.ok(m.pctValence5to7 >= 90, `${what}: at least 90 % of interior vertices of valence 5-7`);
-        assert.ok(m.minAngle > 10, `${what}: no sliver`);
+        const s = tools[0] === 'grab' ? grab : stroke;
+        const ours = L.runOurs(M, mesh, tools.map((tool) => ({ tool, stroke: s })), { length });
+        const m = L.brushedRegionMetrics(ours.mesh, s);
+        checkTargets(`${spec.name} ${tools.join('+')}: ${JSON.stringify(m)}`, m, before, length);
       });
     }
   });
 }
+
+// The same strokes where the brush must COARSEN the surface 2.5x (a hemisphere first remeshed
+// finely; three.js's Sculptor meets the bunny at that ratio with its default detail). Known miss:
+// the triangles under 30° sit in the outer third of the brush, where the remeshed region meets the
+// untouched fine mesh: Remesher::iterate_region gives the whole region the uniform target (no
+// grading from the held border's own edge length) and splits the border's held-held edges, whose
+// outer triangles no pass improves. A fix belongs in cpp/remesh (see the issue #7 notes).
+const COARSEN_TODO = 'iterate_region needs sizing graded from the region border (cpp/remesh)';
+test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip, todo: COARSEN_TODO }, async (t) => {
+  const mesh0 = L.readMesh(M, MESHES[1].file);
+  const radius = 0.07 * L.boundingBox(mesh0.positions).diagonal;
+  const length = 0.2 * radius;
+  const fine = length / 2.5;
+  const s = new M.Session();
+  let mesh;
+  try {
+    s.loadArrays(mesh0.positions, mesh0.indices);
+    s.replay(JSON.stringify({ version: 1, settings: { min_length: fine, max_length: fine }, steps: [{ remesh: { iterations: 5 } }] }));
+    mesh = { positions: Float64Array.from(s.positions()), indices: Uint32Array.from(s.indices()) };
+  } finally {
+    s.delete();
+  }
+  const { view, across } = MESHES[1];
+  const stroke = L.makeStroke(mesh, { view, across, span: 0.4, wiggle: 0.05, radius });
+  const grab = L.makeGrab(mesh, { view, across, start: 0.25, pull: 3, radius });
+  const before = L.brushedRegionMetrics(mesh, stroke);
+  for (const tool of ['draw', 'smooth', 'grab']) {
+    await t.test(tool, { todo: COARSEN_TODO }, () => {
+      const st = tool === 'grab' ? grab : stroke;
+      const m = L.brushedRegionMetrics(L.runOurs(M, mesh, [{ tool, stroke: st }], { length }).mesh, st);
+      checkTargets(`coarsening ${tool}: ${JSON.stringify(m)}`, m, before, length);
+    });
+  }
+});
