@@ -1,8 +1,10 @@
 #include "sculpt/session.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <stdexcept>
 
@@ -12,6 +14,7 @@
 #include "geometry/aabb_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
+#include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
 #include "sculpt/session_file.h"
 
@@ -26,6 +29,72 @@ size_t mesh_bytes(const mesh::SurfaceMesh& m) {
   return m.vertices_size() * (sizeof(Point) + 8) + m.halfedges_size() * 16 + m.edges_size() * 2 +
          m.faces_size() * 8;
 }
+
+// save_state() blob, little-endian (native on x86 and wasm; checked below):
+//   "ADSCSTAT" u32 version=1, f64 epsilon min_length max_length features diagonal,
+//   u32 undo count, u32 redo count, then meshes: current, undo steps oldest..newest, redo steps
+//   farthest..nearest (deque order). Mesh: u32 vertices, u32 triangles, f64 xyz..., u32 abc...
+constexpr char kStateMagic[8] = {'A', 'D', 'S', 'C', 'S', 'T', 'A', 'T'};
+constexpr uint32_t kStateVersion = 1;
+
+size_t serialized_size(const mesh::SurfaceMesh& m) { return 8 + m.n_vertices() * 24 + m.n_faces() * 12; }
+
+struct StateWriter {
+  std::vector<uint8_t> out;
+  template <class T>
+  void put(const T& v) {
+    const auto* p = reinterpret_cast<const uint8_t*>(&v);
+    out.insert(out.end(), p, p + sizeof(T));
+  }
+  void put_mesh(const mesh::SurfaceMesh& m) {
+    const io::PolygonSoup soup = io::soup_from_mesh(m);
+    put(uint32_t(soup.points.size()));
+    put(uint32_t(soup.triangles.size()));
+    for (const auto& p : soup.points) put(p);
+    // Rotated so that build_from_triangles (whose face halfedge ends at the second corner) gives
+    // back the same face_vertices() order: a save after a restore is byte-identical.
+    for (const auto& t : soup.triangles) put(std::array<uint32_t, 3>{t[2], t[0], t[1]});
+  }
+};
+
+struct StateReader {
+  const uint8_t* p;
+  size_t left;
+  [[noreturn]] static void fail(const std::string& what) {
+    throw std::invalid_argument("saved state: " + what);
+  }
+  template <class T>
+  T get() {
+    if (left < sizeof(T)) fail("truncated");
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    p += sizeof(T);
+    left -= sizeof(T);
+    return v;
+  }
+  mesh::SurfaceMesh get_mesh() {
+    const uint64_t nv = get<uint32_t>(), nf = get<uint32_t>();
+    if (nv * 24 + nf * 12 > left) fail("truncated mesh");
+    std::vector<std::array<double, 3>> points(nv);
+    std::vector<std::array<uint32_t, 3>> tris(nf);
+    for (auto& x : points) {
+      x = get<std::array<double, 3>>();
+      for (double c : x)
+        if (!std::isfinite(c)) fail("non-finite position");
+    }
+    for (auto& t : tris) {
+      t = get<std::array<uint32_t, 3>>();
+      for (uint32_t i : t)
+        if (i >= nv) fail("vertex index out of range");
+    }
+    if (nf == 0) fail("a mesh without faces");
+    try {
+      return mesh::build_from_triangles(points, tris);
+    } catch (const mesh::TopologyError& e) {
+      fail(e.what());
+    }
+  }
+};
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -371,6 +440,96 @@ void Session::clear_changes() {
 std::vector<uint8_t> Session::export_bytes(io::Format f) const {
   impl_->require_mesh("export");
   return io::save_mesh_to_memory(impl_->mesh, f);
+}
+
+std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
+  const Impl& s = *impl_;
+  s.require_mesh("save state");
+  if (s.grabbing || s.brushing) throw std::logic_error("save state: a grab or a stroke is in progress");
+  static_assert(sizeof(std::array<double, 3>) == 24 && sizeof(std::array<uint32_t, 3>) == 12, "packed arrays");
+  const uint32_t probe = 1;
+  if (*reinterpret_cast<const uint8_t*>(&probe) != 1) throw std::logic_error("save state: big-endian host");
+  // Newest undo steps first, then the nearest redo steps, while they fit the budget.
+  size_t used = 0, n_undo = 0, n_redo = 0;
+  for (auto it = s.undo.rbegin(); it != s.undo.rend(); ++it, ++n_undo) {
+    const size_t b = serialized_size(*it);
+    if (used + b > max_history_bytes) break;
+    used += b;
+  }
+  if (n_undo == s.undo.size())
+    for (auto it = s.redo.rbegin(); it != s.redo.rend(); ++it, ++n_redo) {
+      const size_t b = serialized_size(*it);
+      if (used + b > max_history_bytes) break;
+      used += b;
+    }
+  StateWriter w;
+  w.out.reserve(64 + serialized_size(s.mesh) + used);
+  w.out.insert(w.out.end(), kStateMagic, kStateMagic + 8);
+  w.put(kStateVersion);
+  for (double x : {s.options.epsilon, s.options.min_length, s.options.max_length, s.options.feature_angle_deg,
+                   s.diagonal})
+    w.put(x);
+  w.put(uint32_t(n_undo));
+  w.put(uint32_t(n_redo));
+  w.put_mesh(s.mesh);
+  for (size_t i = s.undo.size() - n_undo; i < s.undo.size(); ++i) w.put_mesh(s.undo[i]);
+  for (size_t i = s.redo.size() - n_redo; i < s.redo.size(); ++i) w.put_mesh(s.redo[i]);
+  return std::move(w.out);
+}
+
+void Session::restore_state(const uint8_t* data, size_t size) {
+  StateReader r{data, size};
+  if (size < 8 || std::memcmp(data, kStateMagic, 8) != 0) r.fail("not an adasculpt state (bad magic)");
+  r.p += 8;
+  r.left -= 8;
+  const uint32_t version = r.get<uint32_t>();
+  if (version != kStateVersion) r.fail("unsupported version " + std::to_string(version));
+  double v[5];
+  for (double& x : v) x = r.get<double>();
+  const uint32_t n_undo = r.get<uint32_t>(), n_redo = r.get<uint32_t>();
+  if (uint64_t(n_undo) + n_redo > (r.left + 1) / 8) r.fail("truncated history");
+  mesh::SurfaceMesh current = r.get_mesh();
+  std::deque<mesh::SurfaceMesh> undo, redo;
+  for (uint32_t i = 0; i < n_undo; ++i) undo.push_back(r.get_mesh());
+  while (undo.size() > kMaxUndoSteps) undo.pop_front();
+  for (uint32_t i = 0; i < n_redo; ++i) redo.push_back(r.get_mesh());
+  if (r.left != 0) r.fail(std::to_string(r.left) + " unexpected bytes at the end");
+  remesh::RemeshOptions o = remesh::default_options_for(current);
+  o.adaptive = true;
+  o.epsilon = v[0];
+  o.min_length = v[1];
+  o.max_length = v[2];
+  o.feature_angle_deg = v[3];
+  if (!(v[4] > 0) || !std::isfinite(v[4])) r.fail("bad diagonal");
+  if (!(o.min_length <= o.max_length)) r.fail("'min_length' exceeds 'max_length'");
+  try {
+    remesh::check_options(o);
+  } catch (const std::exception& e) {
+    r.fail(e.what());
+  }
+  // Everything parsed: commit (moves only).
+  Impl& s = *impl_;
+  s.end_grab();
+  s.mesh = std::move(current);
+  s.has_mesh = true;
+  s.undo = std::move(undo);
+  s.redo = std::move(redo);
+  s.undo_bytes = 0;
+  for (const auto& m : s.undo) s.undo_bytes += mesh_bytes(m);
+  s.options = o;
+  s.diagonal = v[4];
+  s.last = FrameTimings{};
+  s.mesh_replaced();
+}
+
+size_t Session::undo_steps() const { return impl_->undo.size(); }
+size_t Session::redo_steps() const { return impl_->redo.size(); }
+size_t Session::memory_bytes() const {
+  const Impl& s = *impl_;
+  size_t b = s.has_mesh ? mesh_bytes(s.mesh) : 0;
+  b += s.undo_bytes;
+  for (const auto& m : s.redo) b += mesh_bytes(m);
+  return b;
 }
 
 }  // namespace adasculpt::sculpt

@@ -116,6 +116,22 @@ class Session {
   void clear_changes();
   std::vector<uint8_t> export_bytes(io::Format f) const;
 
+  // The whole state in one lossless binary blob, for autosave: the current mesh (double
+  // positions, triangles), the settings (absolute, with the diagonal they were made relative to)
+  // and the undo/redo history, newest undo steps first, then the nearest redo steps, as many as
+  // fit in max_history_bytes (serialized size; the current mesh is always included). Snapshots are
+  // stored as indexed triangles (compacted meshes), so positions and faces come back bit for bit
+  // (halfedge numbering may differ). Throws std::logic_error without a mesh or during a grab/stroke.
+  static constexpr size_t kDefaultStateHistoryBytes = size_t(96) << 20;
+  std::vector<uint8_t> save_state(size_t max_history_bytes = kDefaultStateHistoryBytes) const;
+  // Replaces mesh, settings and history with a save_state() blob; all or nothing: a truncated or
+  // corrupt blob throws std::invalid_argument and nothing changes. Ends any grab.
+  void restore_state(const uint8_t* data, size_t size);
+  // Undo and redo steps held, and the rough heap size of the mesh plus its history (bytes).
+  size_t undo_steps() const;
+  size_t redo_steps() const;
+  size_t memory_bytes() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,173 @@
+// Session::save_state / restore_state (the browser's autosave): the mesh, the settings and the
+// undo/redo history come back exactly, the history respects its byte budget (newest steps kept),
+// undo/redo work after a restore, and a damaged blob changes nothing.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/load_mesh.h"
+#include "mesh/primitives.h"
+#include "sculpt/session.h"
+
+using namespace adasculpt;
+
+namespace {
+
+// Positions bit for bit and the same triangles (vertex indices, in face order).
+::testing::AssertionResult same_geometry(const mesh::SurfaceMesh& a, const mesh::SurfaceMesh& b) {
+  const io::PolygonSoup sa = io::soup_from_mesh(a), sb = io::soup_from_mesh(b);
+  if (sa.points.size() != sb.points.size() || sa.triangles.size() != sb.triangles.size())
+    return ::testing::AssertionFailure() << "sizes differ: " << sa.points.size() << "/" << sb.points.size()
+                                         << " vertices, " << sa.triangles.size() << "/" << sb.triangles.size()
+                                         << " faces";
+  if (std::memcmp(sa.points.data(), sb.points.data(), sa.points.size() * sizeof(sa.points[0])) != 0)
+    return ::testing::AssertionFailure() << "positions differ";
+  if (sa.triangles != sb.triangles) return ::testing::AssertionFailure() << "triangles differ";
+  return ::testing::AssertionSuccess();
+}
+
+void pull(sculpt::Session& s, Point c, Vec3 t) {
+  s.grab_begin(c, 0.1, 0.6);
+  for (int i = 1; i <= 4; ++i) {
+    deform::HandleTransform x;
+    x.translation = (double(i) / 4) * t;
+    s.grab_drag(x);
+  }
+  s.grab_end();
+}
+
+// Three pulls and one undo: undo holds [input, after 1st pull], redo holds [after 3rd pull].
+struct Scenario {
+  sculpt::Session s;
+  std::vector<mesh::SurfaceMesh> states;  // input, after pull 1, 2, 3
+  Scenario() {
+    s.load(mesh::make_icosphere(3));
+    s.set_settings({{"epsilon", "0.1%"}, {"max_length", "8%"}, {"features", 30}});
+    states.push_back(s.mesh());
+    pull(s, Point(0, 0, 1), Vec3(0, 0, 0.4));
+    states.push_back(s.mesh());
+    pull(s, Point(1, 0, 0), Vec3(0.3, 0, 0));
+    states.push_back(s.mesh());
+    pull(s, Point(0, -1, 0), Vec3(0, -0.3, 0.1));
+    states.push_back(s.mesh());
+    EXPECT_TRUE(s.undo());
+  }
+};
+
+}  // namespace
+
+TEST(SculptHistoryExport, RestoresMeshSettingsAndHistoryExactly) {
+  Scenario a;
+  const std::vector<uint8_t> blob = a.s.save_state();
+  sculpt::Session b;
+  b.load(mesh::make_box(2, 2, 2));  // something else first: restore replaces it
+  b.restore_state(blob.data(), blob.size());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[2]));
+  b.mesh().validate();
+  EXPECT_EQ(b.settings().dump(), a.s.settings().dump());  // absolute values and the diagonal
+  EXPECT_EQ(b.undo_steps(), 2u);
+  EXPECT_EQ(b.redo_steps(), 1u);
+  EXPECT_TRUE(b.changes().everything);
+  // Redo, then undo all the way back: every state bit for bit.
+  EXPECT_TRUE(b.redo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[3]));
+  EXPECT_FALSE(b.redo());
+  EXPECT_TRUE(b.undo() && b.undo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[1]));
+  EXPECT_TRUE(b.undo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[0]));
+  EXPECT_FALSE(b.undo());
+  // Saving the restored session gives the same blob (nothing lost or reordered on the way).
+  EXPECT_TRUE(b.redo() && b.redo());
+  EXPECT_EQ(b.save_state(), blob);
+}
+
+TEST(SculptHistoryExport, SculptingContinuesAfterARestore) {
+  Scenario a;
+  const std::vector<uint8_t> blob = a.s.save_state();
+  sculpt::Session b;
+  b.restore_state(blob.data(), blob.size());
+  pull(b, Point(-1, 0, 0), Vec3(-0.3, 0, 0));
+  b.mesh().validate();
+  EXPECT_FALSE(b.can_redo());  // a new step drops the redo branch
+  EXPECT_EQ(b.undo_steps(), 3u);
+  EXPECT_TRUE(b.undo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[2]));
+}
+
+TEST(SculptHistoryExport, HistoryIsBoundedNewestStepsFirst) {
+  Scenario a;
+  const std::vector<uint8_t> full = a.s.save_state();
+  const std::vector<uint8_t> none = a.s.save_state(0);
+  const size_t current = none.size();
+  ASSERT_GT(full.size(), current);
+
+  sculpt::Session b;
+  b.restore_state(none.data(), none.size());
+  EXPECT_EQ(b.undo_steps(), 0u);
+  EXPECT_EQ(b.redo_steps(), 0u);
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[2]));
+
+  // A budget that holds exactly the newest undo step (the mesh after pull 1, serialized as
+  // counts, double positions and triangles) keeps only it.
+  const size_t newest_mesh = 8 + a.states[1].n_vertices() * 24 + a.states[1].n_faces() * 12;
+  const std::vector<uint8_t> one = a.s.save_state(newest_mesh);
+  EXPECT_EQ(one.size(), current + newest_mesh);
+  b.restore_state(one.data(), one.size());
+  EXPECT_EQ(b.undo_steps(), 1u);
+  EXPECT_EQ(b.redo_steps(), 0u);
+  EXPECT_TRUE(b.undo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[1]));
+  EXPECT_FALSE(b.undo());
+
+  // One byte less keeps nothing; the full budget keeps all three steps.
+  EXPECT_EQ(a.s.save_state(newest_mesh - 1).size(), current);
+  EXPECT_LE(full.size() - current, sculpt::Session::kDefaultStateHistoryBytes);
+}
+
+TEST(SculptHistoryExport, DamagedBlobsThrowAndChangeNothing) {
+  Scenario a;
+  const std::vector<uint8_t> blob = a.s.save_state();
+  sculpt::Session b;
+  b.load(mesh::make_icosphere(1));
+  pull(b, Point(0, 0, 1), Vec3(0, 0, 0.2));
+  const mesh::SurfaceMesh before = b.mesh();
+  const std::string settings = b.settings().dump();
+  auto expect_rejected = [&](std::vector<uint8_t> bad, const char* what) {
+    EXPECT_THROW(b.restore_state(bad.data(), bad.size()), std::invalid_argument) << what;
+    EXPECT_TRUE(same_geometry(b.mesh(), before)) << what;
+    EXPECT_EQ(b.settings().dump(), settings) << what;
+    EXPECT_EQ(b.undo_steps(), 1u) << what;
+  };
+  expect_rejected(std::vector<uint8_t>(blob.begin(), blob.begin() + blob.size() / 2), "truncated");
+  expect_rejected(std::vector<uint8_t>(blob.begin(), blob.end() - 1), "last byte missing");
+  std::vector<uint8_t> extra = blob;
+  extra.push_back(0);
+  expect_rejected(extra, "trailing byte");
+  std::vector<uint8_t> magic = blob;
+  magic[0] = 'X';
+  expect_rejected(magic, "magic");
+  std::vector<uint8_t> version = blob;
+  version[8] = 2;
+  expect_rejected(version, "version");
+  std::vector<uint8_t> index = blob;
+  const size_t first_triangle = 8 + 4 + 40 + 8 + 8 + a.states[2].n_vertices() * 24;
+  std::memset(&index[first_triangle], 0xff, 4);
+  expect_rejected(index, "index out of range");
+  expect_rejected({}, "empty");
+}
+
+TEST(SculptHistoryExport, RefusedWithoutAMeshOrDuringAGrab) {
+  sculpt::Session s;
+  EXPECT_THROW(s.save_state(), std::logic_error);
+  s.load(mesh::make_icosphere(2));
+  s.grab_begin(Point(0, 0, 1), 0.1, 0.5);
+  EXPECT_THROW(s.save_state(), std::logic_error);
+  s.grab_end();
+  EXPECT_NO_THROW(s.save_state());
+  EXPECT_GT(s.memory_bytes(), s.mesh().n_faces() * 8);
+}
