@@ -1,7 +1,9 @@
 // Soak test: long runs of random sculpting through sculpt::Session (grabs with random centre, radii,
-// translation, rotation, scale and substeps; whole-mesh remeshes; runs of undo and redo), checking
-// the invariants a user relies on:
-//   - no NaN / infinite position, ever (checked after every step);
+// translation, rotation, scale and substeps; brush strokes with every tool, random radius, strength,
+// spacing, invert, symmetry axis and pressure along paths that walk over the surface and sometimes
+// leave it; whole-mesh remeshes; runs of undo and redo), checking the invariants a user relies on:
+//   - no NaN / infinite position, ever (after every step; during grabs after every frame, during
+//     strokes on the touched vertices after every pointer sample);
 //   - mesh().validate() passes, genus and boundary loops are those of the input (every N steps);
 //   - undo and redo are exact: a fingerprint model of the history (hash of counts + positions before
 //     each step) must match what undo() / redo() bring back, and undo() must fail exactly when the
@@ -17,11 +19,13 @@
 //   ADASCULPT_SOAK_CHECK_EVERY=N  validate/topology period (default 20; the long run uses 100)
 //   ADASCULPT_SOAK_SEED=N         random seed (default 1; deterministic for a given seed)
 //   ADASCULPT_SOAK_MAX_RSS_MB=N   peak RSS limit (VmHWM, default 4096)
+//   ADASCULPT_SOAK_PROGRESS_EVERY=N  a progress line every N steps per mesh (default 500)
 // Every step is logged in session-file form: on a failure the steps up to it are written to
 // $TMPDIR/adasculpt_soak_<mesh>.json, replayable with `adasculpt replay`.
 // A closing line prints steps, meshes, frames, time, peak RSS and the number of checks passed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -38,8 +42,10 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "deform/brushes.h"
 #include "geometry/topology.h"
 #include "mesh/primitives.h"
+#include "sculpt/brush.h"
 #include "sculpt/session.h"
 #include "sculpt/session_file.h"
 
@@ -111,6 +117,7 @@ bool all_finite(const mesh::SurfaceMesh& m) {
 
 struct Totals {
   long steps = 0, frames = 0, grabs = 0, remeshes = 0, undos = 0, redos = 0;
+  long brushes = 0, samples = 0, stamps = 0;  // strokes, pointer samples, stamps run
   long checks = 0;  // invariant checks passed (finite positions, validate, genus, boundaries, history, undo/redo)
 };
 
@@ -132,9 +139,18 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
   const double min_len = s.settings()["min_length"].get<double>();
   const size_t faces0 = s.mesh().n_faces();
 
+  const long progress_every = env_long("ADASCULPT_SOAK_PROGRESS_EVERY", 500);
+  const auto t_mesh = std::chrono::steady_clock::now();
   std::mt19937 rng(seed);
   auto uni = [&rng](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   auto pick = [&rng](int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); };
+  auto random_vertex = [&]() {
+    const auto& m = s.mesh();
+    mesh::Vertex v;
+    do v = mesh::Vertex(static_cast<mesh::Index>(pick(static_cast<int>(m.vertices_size()))));
+    while (m.is_deleted(v) || m.is_isolated(v));
+    return v;
+  };
   auto unit = [&]() {
     Vec3 d;
     do d = Vec3(uni(-1, 1), uni(-1, 1), uni(-1, 1));
@@ -164,11 +180,10 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
   for (long step = 1; step <= steps; ++step) {
     const int kind = pick(100);
     try {
-      if (kind < 70) {  // grab
+      if (kind < 40) {  // grab
         sculpt::GrabStep g;
         const auto& m = s.mesh();
-        mesh::Vertex v(static_cast<mesh::Index>(pick(static_cast<int>(m.vertices_size()))));
-        while (m.is_deleted(v)) v = mesh::Vertex(static_cast<mesh::Index>(pick(static_cast<int>(m.vertices_size()))));
+        const mesh::Vertex v = random_vertex();
         g.center = m.position(v) + uni(0, 0.02 * diag) * unit();
         g.handle_radius = pick(4) == 0 ? 0.0 : uni(0, 0.05 * diag);
         g.roi_radius = g.handle_radius + uni(0.02 * diag, 0.25 * diag);
@@ -199,6 +214,96 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         s.grab_end();
         push_model(before);
         ++totals.grabs;
+      } else if (kind < 70) {  // brush stroke
+        const auto& m = s.mesh();
+        sculpt::BrushStroke b;
+        deform::BrushSettings& bs = b.settings;
+        bs.tool = static_cast<deform::BrushTool>(pick(7));  // draw .. grab (snake hook)
+        bs.radius = uni(0.01, 0.12) * diag;
+        bs.strength = pick(8) == 0 ? double(pick(2)) : uni(0, 1);
+        bs.spacing = pick(3) == 0 ? uni(0.05, 1.0) : 0.25;
+        bs.invert = pick(3) == 0;
+        bs.symmetry_axis = pick(2) == 0 ? pick(3) : -1;
+        // Pointer samples: a path that walks over the surface from a random vertex (or from where
+        // a random ray hits it), about `travel` apart, turning slowly; some samples leave the
+        // surface (near it, or far off as when the pointer slides off the model). Grab (snake
+        // hook) drags through space from a surface point instead.
+        // About a dozen stamps per stroke on average (each stamp runs a remeshing iteration).
+        const int n = 1 + pick(bs.spacing < 0.15 ? 4 : 10);
+        const double travel = uni(0.1, 1.0) * bs.radius;
+        mesh::Vertex v = random_vertex();
+        Vec3 dir = unit();
+        Point start = m.position(v);
+        if (pick(3) == 0) {
+          const Vec3 ray = unit();
+          Point hit;
+          if (s.pick(start - diag * ray, ray, &hit)) start = hit;
+        }
+        b.path.push_back(start);
+        for (int i = 1; i < n; ++i) {
+          dir = glm::normalize(dir + 0.4 * unit());
+          if (bs.tool == deform::BrushTool::Grab) {
+            b.path.push_back(b.path.back() + uni(0.2, 1.0) * travel * dir);
+            continue;
+          }
+          double walked = 0;
+          for (int hop = 0; hop < 64 && walked < travel; ++hop) {
+            mesh::Vertex next;
+            double best = -1e300;
+            for (mesh::Vertex w : m.vertices(v)) {
+              const Vec3 e = m.position(w) - m.position(v);
+              const double len = glm::length(e);
+              const double a = (len > 0 ? glm::dot(e, dir) / len : -1) + uni(0, 0.3);
+              if (a > best) {
+                best = a;
+                next = w;
+              }
+            }
+            if (!next.is_valid()) break;
+            walked += glm::length(m.position(next) - m.position(v));
+            v = next;
+          }
+          Point p = m.position(v);
+          const int off = pick(20);
+          if (off < 2)
+            p += uni(0.5, 3) * bs.radius * unit();  // off the surface, near it
+          else if (off == 2)
+            p += uni(0.05, 0.3) * diag * unit();  // far off
+          else
+            p += uni(0, 0.1) * bs.radius * unit();
+          b.path.push_back(p);
+        }
+        if (pick(2) == 0) {  // pen pressure, a random walk in [0, 1]
+          double pr = uni(0, 1);
+          for (size_t i = 0; i < b.path.size(); ++i) {
+            b.pressure.push_back(pr);
+            pr = std::clamp(pr + uni(-0.3, 0.3), 0.0, 1.0);
+          }
+        }
+        sculpt::SessionFile one;
+        one.steps.emplace_back();
+        one.steps.back().kind = sculpt::SessionStep::Kind::Brush;
+        one.steps.back().brush = b;
+        log["steps"].push_back(sculpt::to_json(one)["steps"][0]);
+        const uint64_t before = fingerprint(s.mesh());
+        s.brush_begin(bs);
+        for (size_t i = 0; i < b.path.size(); ++i) {
+          s.brush_stamp(b.path[i], b.pressure.empty() ? 1.0 : b.pressure[i]);
+          ++totals.samples;
+          totals.stamps += s.last_frame().stamps;
+          for (mesh::Vertex t : s.changes().touched_vertices) {
+            if (t.idx >= m.vertices_size() || m.is_deleted(t)) continue;
+            const Point& p = m.position(t);
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+              ADD_FAILURE() << fail_here(step, "non-finite position during brush sample " + std::to_string(i));
+              return;
+            }
+          }
+          s.clear_changes();  // as the app does once per frame
+        }
+        s.brush_end();
+        push_model(before);
+        ++totals.brushes;
       } else if (kind < 80) {  // whole-mesh remesh
         const int it = 1 + pick(2);
         log["steps"].push_back({{"remesh", {{"iterations", it}}}});
@@ -271,9 +376,12 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
       }
       totals.checks += 4;
     }
-    if (step % 500 == 0) {  // progress of long runs
-      std::printf("[soak]   %s: step %ld/%ld, %zu vertices, VmHWM %ld MB, %ld checks so far\n", label.c_str(), step,
-                  steps, s.mesh().n_vertices(), proc_status_kb("VmHWM") / 1024, totals.checks);
+    if (step % progress_every == 0) {  // progress of long runs
+      std::printf("[soak]   %s: step %ld/%ld, %zu vertices, %zu faces, %.0f s, VmRSS %ld MB, VmHWM %ld MB, "
+                  "%ld checks so far\n",
+                  label.c_str(), step, steps, s.mesh().n_vertices(), s.mesh().n_faces(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t_mesh).count(),
+                  proc_status_kb("VmRSS") / 1024, proc_status_kb("VmHWM") / 1024, totals.checks);
       std::fflush(stdout);
     }
   }
@@ -316,10 +424,11 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
     soak_one(meshes[i], steps, check_every, seed + uint32_t(i), totals);
     if (HasFailure()) return;
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
-    std::printf("[soak] %-28s steps %6ld frames %7ld grabs %6ld remeshes %5ld undos %5ld redos %5ld  %.1f s  "
-                "VmHWM %ld MB\n",
-                meshes[i].c_str(), totals.steps - before.steps, totals.frames - before.frames,
-                totals.grabs - before.grabs, totals.remeshes - before.remeshes, totals.undos - before.undos,
+    std::printf("[soak] %-28s steps %6ld grabs %6ld (frames %7ld) brushes %6ld (samples %7ld, stamps %8ld) "
+                "remeshes %5ld undos %5ld redos %5ld  %.1f s  VmHWM %ld MB\n",
+                meshes[i].c_str(), totals.steps - before.steps, totals.grabs - before.grabs,
+                totals.frames - before.frames, totals.brushes - before.brushes, totals.samples - before.samples,
+                totals.stamps - before.stamps, totals.remeshes - before.remeshes, totals.undos - before.undos,
                 totals.redos - before.redos, sec, proc_status_kb("VmHWM") / 1024);
     std::fflush(stdout);
     if (totals.steps > before.steps) done.push_back(fs::path(meshes[i]).filename().string());
@@ -328,9 +437,11 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
   const long hwm_mb = proc_status_kb("VmHWM") / 1024;
   std::string names;
   for (const auto& d : done) names += (names.empty() ? "" : ",") + d;
-  std::printf("[soak] total: %ld steps on %zu meshes (%s), %ld frames, %.1f s, peak RSS (VmHWM) %ld MB, "
+  std::printf("[soak] total: %ld steps on %zu meshes (%s): %ld grabs (%ld frames), %ld brush strokes (%ld samples, "
+              "%ld stamps), %ld remeshes, %ld undos, %ld redos; %.1f s, peak RSS (VmHWM) %ld MB, "
               "%ld invariant checks passed, seed %u\n",
-              totals.steps, done.size(), names.c_str(), totals.frames, sec, hwm_mb, totals.checks, seed);
+              totals.steps, done.size(), names.c_str(), totals.grabs, totals.frames, totals.brushes, totals.samples,
+              totals.stamps, totals.remeshes, totals.undos, totals.redos, sec, hwm_mb, totals.checks, seed);
   if (hwm_mb > 0) {
     EXPECT_LE(hwm_mb, max_rss_mb) << "peak RSS";
   }

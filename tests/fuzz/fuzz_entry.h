@@ -6,7 +6,8 @@
 // Contract checked for every input: the call either succeeds and its result honours the
 // documented guarantees (readers: indices in range, finite coordinates; load_mesh: a mesh that
 // passes validate() and survives an export/re-import round trip; session files: a parse that
-// survives to_json() -> parse again), or it refuses with the one documented exception type
+// survives to_json() -> parse again, brush steps bit for bit and valid for Session::brush_stroke),
+// or it refuses with the one documented exception type
 // (io::IoError for files, std::invalid_argument for session files). Anything else — another
 // exception type, a broken guarantee (ContractViolation), a sanitizer report — is a finding.
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "deform/brushes.h"
 #include "io/load_mesh.h"
 #include "io/mesh_io.h"
 #include "sculpt/session_file.h"
@@ -99,6 +101,36 @@ inline Outcome run_load_mesh(const uint8_t* data, size_t size) {
   return Outcome::Accepted;
 }
 
+// A parsed brush step is one Session::brush_stroke accepts: valid settings (check_brush_settings
+// does not throw), a non-empty path of finite points, one pressure in [0, 1] per point or none.
+inline void check_brush(const sculpt::BrushStroke& b) {
+  try {
+    deform::check_brush_settings(b.settings);
+  } catch (const std::exception& e) {
+    throw ContractViolation(std::string("parsed brush settings are refused by the brush: ") + e.what());
+  }
+  if (b.path.empty()) throw ContractViolation("brush step without a path");
+  for (const Point& p : b.path)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw ContractViolation("brush path point is not finite");
+  if (!b.pressure.empty() && b.pressure.size() != b.path.size())
+    throw ContractViolation("brush pressure count differs from the path's");
+  for (double x : b.pressure)
+    if (!(x >= 0 && x <= 1)) throw ContractViolation("brush pressure outside [0, 1]");
+}
+
+// Bit-for-bit the same stroke (what a saved session must replay exactly).
+inline bool same_stroke(const sculpt::BrushStroke& a, const sculpt::BrushStroke& b) {
+  const deform::BrushSettings &x = a.settings, &y = b.settings;
+  if (x.tool != y.tool || x.radius != y.radius || x.strength != y.strength || x.spacing != y.spacing ||
+      x.invert != y.invert || x.symmetry_axis != y.symmetry_axis)
+    return false;
+  if (a.path.size() != b.path.size() || a.pressure != b.pressure) return false;
+  for (size_t i = 0; i < a.path.size(); ++i)
+    if (a.path[i] != b.path[i]) return false;
+  return true;
+}
+
 inline Outcome run_session_file(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   sculpt::SessionFile f;
@@ -109,6 +141,7 @@ inline Outcome run_session_file(const uint8_t* data, size_t size) {
   }
   for (const sculpt::SessionStep& s : f.steps) {
     if (s.count < 1) throw ContractViolation("step count below 1");
+    if (s.kind == sculpt::SessionStep::Kind::Brush) check_brush(s.brush);
     if (s.kind != sculpt::SessionStep::Kind::Grab) continue;
     if (s.grab.substeps < 1) throw ContractViolation("grab with substeps below 1");
     for (double t : {0.0, 0.5, 1.0}) {
@@ -128,6 +161,11 @@ inline Outcome run_session_file(const uint8_t* data, size_t size) {
     throw ContractViolation(std::string("to_json output does not parse back: ") + e.what() + "\n" + again);
   }
   if (g.steps.size() != f.steps.size()) throw ContractViolation("to_json round trip changed the step count");
+  for (size_t i = 0; i < f.steps.size(); ++i) {
+    if (g.steps[i].kind != f.steps[i].kind) throw ContractViolation("to_json round trip changed a step's kind");
+    if (f.steps[i].kind == sculpt::SessionStep::Kind::Brush && !same_stroke(f.steps[i].brush, g.steps[i].brush))
+      throw ContractViolation("to_json round trip changed brush step " + std::to_string(i + 1) + "\n" + again);
+  }
   return Outcome::Accepted;
 }
 
