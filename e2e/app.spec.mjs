@@ -5,36 +5,18 @@ import { test, expect } from '@playwright/test';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { watchErrors, open, stats, save, sameAs, snapshotCanvas } from './helpers.mjs';
 
 const root = path.join(path.dirname(fileURLToPath(import.meta.url)), '..');
 const shot = (page, name) => page.screenshot({ path: path.join(root, 'test-results', `${name}.png`) });
 
-// Console errors and page errors fail the test that collected them.
-function watchErrors(page) {
-  const errors = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(e.message));
-  return errors;
-}
-
-async function open(page, url = '/') {
-  await page.goto(url);
-  await page.waitForFunction(() => document.documentElement.dataset.ready === 'true' &&
-    window.app.stats().firstRenderMs !== null, null, { timeout: 30_000 });
-}
-
-const stats = (page) => page.evaluate(() => window.app.stats());
-
 // RGB of canvas pixels at fractions of its size (the WebGL canvas keeps its drawing buffer).
-function pixels(page, points) {
+async function pixels(page, points) {
+  await snapshotCanvas(page);
   return page.evaluate((pts) => {
-    const c = document.querySelector('canvas');
-    const t = document.createElement('canvas');
-    t.width = c.width;
-    t.height = c.height;
-    const g = t.getContext('2d');
-    g.drawImage(c, 0, 0);
-    return pts.map(([fx, fy]) => Array.from(g.getImageData(Math.floor(fx * c.width), Math.floor(fy * c.height), 1, 1).data.slice(0, 3)));
+    const g = window.__canvas2d;
+    const { width, height } = g.canvas;
+    return pts.map(([fx, fy]) => Array.from(g.getImageData(Math.floor(fx * width), Math.floor(fy * height), 1, 1).data.slice(0, 3)));
   }, points);
 }
 
@@ -49,16 +31,6 @@ async function dragOnModel(page, dx, dy, during) {
   await page.mouse.move(x + dx, y + dy, { steps: 8 });
   await page.mouse.up();
 }
-
-// Saves the current mesh (OFF bytes) under window.__saved[name] / compares with it.
-const save = (page, name) => page.evaluate(async (n) => {
-  window.__saved = window.__saved || {};
-  window.__saved[n] = new Uint8Array(await window.app.export('off'));
-}, name);
-const sameAs = (page, name) => page.evaluate(async (n) => {
-  const a = window.__saved[n], b = new Uint8Array(await window.app.export('off'));
-  return a.length === b.length && a.every((x, i) => x === b[i]);
-}, name);
 
 test('loads without console errors and shows the model', async ({ page }) => {
   const errors = watchErrors(page);

@@ -67,6 +67,36 @@ export interface FrameTimings {
   roi: number; field: number; refine: number; deform: number; remesh: number; total: number;
   /** Render-buffer update in wasm after the core's work. */
   buffers: number;
+  /** Brush stamps run in the frame (0 for grab frames). */
+  stamps: number;
+}
+
+/** The core's brushes; `'grab'` is the snake hook (the surface under the press follows the pointer). */
+export type BrushToolName = 'draw' | 'inflate' | 'smooth' | 'flatten' | 'pinch' | 'crease' | 'grab';
+/** What the pointer drives: `'pull'` is the handle grab (`app.grab`), the others are brushes. */
+export type ToolName = 'pull' | BrushToolName;
+
+/** Brush settings; the missing ones come from the panel (radius, strength, symmetry X by default). */
+export interface BrushSettings {
+  /** Default: the current tool when it is a brush, else `'draw'`. */
+  tool?: BrushToolName;
+  /** Absolute length. */
+  radius?: number;
+  /** 0..1 (pressure multiplies it). */
+  strength?: number;
+  /** Mirror across the plane x, y or z = 0; `'off'` (or `'none'`) for none. */
+  symmetry?: 'x' | 'y' | 'z' | 'off' | 'none';
+  /** Draw/inflate/crease inwards, flatten/pinch push away. */
+  invert?: boolean;
+  /** A stamp every `spacing` × radius of travel (0.05..4, default 0.25). */
+  spacing?: number;
+}
+
+export interface BrushStroke extends BrushSettings {
+  /** Surface points along the stroke (for the grab brush: the pointer positions in space). */
+  path: Vec3[];
+  /** One value in 0..1 per path point; default 1. */
+  pressure?: number[];
 }
 
 export interface SculptStats {
@@ -112,6 +142,21 @@ export interface SculptApp {
     /** The grab becomes one undo step. */
     end(): void;
   };
+  /**
+   * Brush strokes with dynamic topology; a stroke is one undo step. `stroke` runs a whole stroke
+   * (the same as a session file's brush step); `begin`/`stamp`/`end` are the per-frame path the
+   * mouse uses: `stamp` takes all of a frame's samples as `[x, y, z, pressure, ...]` in one wasm call.
+   */
+  readonly brush: {
+    stroke(stroke: BrushStroke): { vertices: number; faces: number; timings: FrameTimings };
+    begin(settings?: BrushSettings): void;
+    stamp(samples: ArrayLike<number>): { vertices: number; faces: number; timings: FrameTimings };
+    end(): void;
+  };
+  /** The current tool (palette, keys 1-8). */
+  readonly tool: ToolName;
+  /** Picks the tool; false while a grab or stroke is under way; throws on an unknown name. */
+  setTool(name: ToolName): boolean;
   /** Whole-mesh remeshing, one iteration per animation frame, each one undo step. */
   remesh(options?: { iterations?: number }): Promise<SculptStats>;
   undo(): boolean;

@@ -4,6 +4,8 @@
 //   setParams({epsilon, minLength, maxLength, features})  numbers are absolute, "0.1%" strings relative
 //   grab.begin({center, handleRadius?, roiRadius?}), grab.drag({translate, rotate: {axis, degrees}, scale}),
 //   grab.end()   (drag takes the total transform since begin)
+//   brush.stroke({tool, path, radius, strength, symmetry, pressure}), brush.begin/stamp/end;
+//   setTool('pull' | 'draw' | ... | 'grab'), tool   (web/brush-tool.js)
 //   remesh({iterations})  -> Promise (one iteration per animation frame; each iteration is one undo step)
 //   undo(), redo()  -> boolean;  replay(sessionJson) -> Promise<report>;  stats();  export(format) -> Promise<ArrayBuffer>
 //   dispose()  frees the wasm instance, GPU resources, DOM and every listener.
@@ -13,6 +15,8 @@ import { instantiateCore } from './wasm-module.js';
 import { createViewer } from './viewer.js';
 import { MeshBuffers } from './mesh-buffers.js';
 import { GrabTool } from './grab-tool.js';
+import { BrushTool, BRUSH_STATE, createBrushApi } from './brush-tool.js';
+import { ToolPalette } from './tool-palette.js';
 import { createPanel, SAMPLES } from './panel.js';
 import { createStatsOverlay } from './stats-overlay.js';
 import { createFileInput, createToaster, download } from './file-io.js';
@@ -21,7 +25,7 @@ import * as THREE from 'three';
 
 const DEFAULT_STATE = {
   epsilon: 0.05, minLength: 0.2, maxLength: 5, features: 0, iterations: 5,
-  handleRadius: 4, roiRadius: 15, shading: 'matcap', flat: false, wireframe: false,
+  handleRadius: 4, roiRadius: 15, shading: 'matcap', flat: false, wireframe: false, ...BRUSH_STATE,
 };
 
 export async function createSculptApp(container, options = {}) {
@@ -150,6 +154,18 @@ export async function createSculptApp(container, options = {}) {
       },
     },
 
+    // Brush strokes (web/brush-tool.js): brush.stroke({tool, path, radius, strength, symmetry, pressure}),
+    // or brush.begin/stamp/end; radius absolute, defaults from the panel.
+    brush: createBrushApi({
+      session,
+      applyChanges: (ch) => { sync(ch); frame.dragged = true; },
+      afterStroke: () => afterWholeMeshChange(),
+      defaults: () => ({ tool: state.tool === 'pull' ? 'draw' : state.tool, radius: (state.brushRadius / 100) * diagonal,
+        strength: state.brushStrength, symmetry: state.symmetry }),
+    }),
+    get tool() { return palette.tool; },
+    setTool(name) { return palette.setTool(name); },
+
     async remesh({ iterations = state.iterations } = {}) {
       if (remeshing) throw new Error('a remesh is already running');
       remeshing = { done: 0, total: iterations };
@@ -173,13 +189,13 @@ export async function createSculptApp(container, options = {}) {
     },
 
     undo() {
-      if (tool && tool.active) return false;
+      if ((tool && tool.active) || (brushTool && brushTool.active)) return false;
       const ok = session.undo();
       afterWholeMeshChange();
       return ok;
     },
     redo() {
-      if (tool && tool.active) return false;
+      if ((tool && tool.active) || (brushTool && brushTool.active)) return false;
       const ok = session.redo();
       afterWholeMeshChange();
       return ok;
@@ -254,6 +270,15 @@ export async function createSculptApp(container, options = {}) {
     busy: () => !!remeshing || !session.hasMesh(),
   };
   const tool = new GrabTool(viewer, core, keyTarget);
+  const brushTool = new BrushTool(viewer, {
+    begin: (s) => guard(() => { api.brush.begin(s); return true; }) === true,
+    stamp: (samples) => guard(() => api.brush.stamp(samples)),
+    end: () => guard(() => api.brush.end()),
+    busy: () => !!remeshing, // no wasm call: without a mesh there is no geometry to hit
+    radius: () => (state.brushRadius / 100) * diagonal,
+    geometry: () => buffers.geometry,
+    changed: () => { if (panel) panel.refresh(); },
+  }, keyTarget, state);
 
   function guard(fn) {
     try {
@@ -302,6 +327,7 @@ export async function createSculptApp(container, options = {}) {
       })),
       remesh: () => api.remesh({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
       radii: () => { if (state.handleRadius > state.roiRadius) state.handleRadius = state.roiRadius * 0.9; tool.updateBrush(); },
+      brush: () => brushTool.updateCursor(),
       display: () => applyDisplay(),
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
@@ -316,23 +342,28 @@ export async function createSculptApp(container, options = {}) {
     inset();
     help = document.createElement('div');
     help.className = 'adasculpt-help';
-    help.textContent = 'drag on the model: grab · R rotate · S scale · wheel: scale · [ ] ROI · { } handle · ' +
+    help.textContent = '1 pull: drag on the model, R rotate · S scale · wheel: scale · [ ] ROI · { } handle · ' +
+      '2–8 brushes: stroke on the model, Ctrl/Alt invert · [ ] radius · - = strength · ' +
       'drag elsewhere: orbit · Ctrl+Z / Ctrl+Shift+Z';
     root.appendChild(help);
   }
+  const palette = new ToolPalette(opts.ui ? root : null, keyTarget, {
+    grabTool: tool, brushTool, state, onChange: () => { if (panel) panel.refresh(); },
+  });
   function applyDisplay() {
     viewer.setShading({ mode: state.shading, flat: state.flat });
     viewer.setWireframe(state.wireframe);
   }
   applyDisplay();
 
-  // ---- the frame loop: at most one wasm call (the grab tool's) and one render per frame
+  // ---- the frame loop: at most one wasm call (the grab's or the stroke's) and one render per frame
   let raf = 0;
   let statsShownAt = 0;
   function loop(now) {
     raf = requestAnimationFrame(loop);
-    const grabbing = tool.active;
+    const grabbing = tool.active || brushTool.active;
     tool.frame();
+    brushTool.frame();
     if (viewer.needsRender) {
       const r0 = performance.now();
       viewer.render();
@@ -361,6 +392,8 @@ export async function createSculptApp(container, options = {}) {
     cancelAnimationFrame(raf);
     keyTarget.removeEventListener('keydown', onKey);
     tool.dispose();
+    brushTool.dispose();
+    palette.dispose();
     fileInput.dispose();
     toaster.dispose();
     if (panel) panel.dispose();

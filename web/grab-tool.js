@@ -6,6 +6,7 @@
 // Pointer events only record the wanted transform; frame() (called once per animation frame by the
 // app) sends it to the core: at most one wasm call per frame however many events arrive.
 import * as THREE from 'three';
+import { bindToolEvents, isTextInput } from './tool-events.js';
 
 export class GrabTool {
   // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform), end(), radii(),
@@ -14,34 +15,30 @@ export class GrabTool {
     this.viewer = viewer;
     this.core = core;
     this.grab = null;   // {center, plane, start, mode, translate, degrees, scale, modeX, ...}
+    this.enabled = true; // false while a brush is the current tool (tool-palette.js)
     this.dirty = false;
     this.hover = null;  // last pointer position for the hover preview
     this.hoverPending = false;
     this.hoverPoint = null;
     this.pointerInside = false;
     this.keyTarget = keyTarget;
-    const el = viewer.renderer.domElement;
-    this.listeners = [
-      [el, 'pointerdown', (e) => this.onPointerDown(e), { capture: true }],
-      [el, 'pointermove', (e) => this.onPointerMove(e)],
-      [el, 'pointerup', (e) => this.onPointerUp(e)],
-      [el, 'pointercancel', (e) => this.onPointerUp(e)],
-      [el, 'pointerenter', () => { this.pointerInside = true; }],
-      [el, 'pointerleave', () => { this.pointerInside = false; this.hover = null; this.updateBrush(); }],
-      [el, 'wheel', (e) => this.onWheel(e), { capture: true, passive: false }],
-      [keyTarget, 'keydown', (e) => this.onKey(e)],
-    ];
-    for (const [t, type, fn, opt] of this.listeners) t.addEventListener(type, fn, opt);
+    this.unbind = bindToolEvents(this, viewer.renderer.domElement, keyTarget);
   }
 
   dispose() {
-    for (const [t, type, fn, opt] of this.listeners) t.removeEventListener(type, fn, opt);
+    this.unbind();
   }
 
   get active() { return this.grab !== null; }
 
+  setEnabled(on) {
+    this.enabled = on;
+    this.hoverPending = on;
+    this.updateBrush();
+  }
+
   onPointerDown(e) {
-    if (e.button !== 0 || this.grab || this.core.busy()) return;
+    if (!this.enabled || e.button !== 0 || this.grab || this.core.busy()) return;
     const ray = this.viewer.ray(e.clientX, e.clientY);
     const hit = this.core.pick(ray);
     if (!hit) return; // empty space: let OrbitControls rotate the view
@@ -63,6 +60,11 @@ export class GrabTool {
     };
     this.core.begin(hit);
     this.dirty = false;
+    this.updateBrush();
+  }
+
+  onPointerLeave() {
+    this.hover = null;
     this.updateBrush();
   }
 
@@ -118,6 +120,7 @@ export class GrabTool {
   }
 
   onWheel(e) {
+    if (!this.enabled) return;
     if (this.grab) {
       e.preventDefault();
       e.stopImmediatePropagation();
@@ -134,7 +137,7 @@ export class GrabTool {
   }
 
   onKey(e) {
-    if (e.ctrlKey || e.metaKey || e.altKey || isTextInput(e.target)) return;
+    if (!this.enabled || e.ctrlKey || e.metaKey || e.altKey || isTextInput(e.target)) return;
     const k = e.key;
     if (this.grab && (k === 'r' || k === 'R')) this.setMode('rotate');
     else if (this.grab && (k === 's' || k === 'S')) this.setMode('scale');
@@ -161,7 +164,7 @@ export class GrabTool {
         this.core.drag(this.transform());
         this.updateBrush();
       }
-    } else if (this.hoverPending && this.hover && this.pointerInside && !this.core.busy()) {
+    } else if (this.enabled && this.hoverPending && this.hover && this.pointerInside && !this.core.busy()) {
       this.hoverPending = false;
       this.hoverPoint = this.core.pick(this.viewer.ray(this.hover.x, this.hover.y));
       this.updateBrush();
@@ -174,12 +177,8 @@ export class GrabTool {
       const c = this.grab.center.clone().add(this.grab.translate);
       this.viewer.setBrush({ center: c, handleRadius: handle, roiRadius: roi, visible: true });
     } else {
-      const visible = !!(this.hover && this.hoverPoint);
+      const visible = !!(this.enabled && this.hover && this.hoverPoint);
       this.viewer.setBrush({ center: this.hoverPoint || undefined, handleRadius: handle, roiRadius: roi, visible });
     }
   }
-}
-
-function isTextInput(t) {
-  return t && (t.tagName === 'INPUT' || t.tagName === 'TEXTAREA' || t.tagName === 'SELECT' || t.isContentEditable);
 }

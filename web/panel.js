@@ -1,6 +1,7 @@
-// The control panel (lil-gui): remeshing settings, brush radii, display, whole-mesh remesh with
+// The control panel (lil-gui): remeshing settings, grab radii, brush settings, display, whole-mesh remesh with
 // progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
 import GUI from 'lil-gui';
+import { SYMMETRY } from './brush-tool.js';
 
 export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
 
@@ -28,6 +29,12 @@ export function createPanel(parent, state, actions) {
   const brush = gui.addFolder('Grab');
   brush.add(state, 'handleRadius', 0.5, 30, 0.1).name('handle radius (%)').onChange(() => actions.radii());
   brush.add(state, 'roiRadius', 1, 80, 0.5).name('ROI radius (%)').onChange(() => actions.radii());
+
+  // The brushes' settings (tools: the palette on the left, keys 1-8); symmetry mirrors across x/y/z = 0.
+  const sculpt = gui.addFolder('Brush');
+  sculpt.add(state, 'brushRadius', 0.5, 30, 0.1).name('radius (%)').onChange(() => actions.brush());
+  sculpt.add(state, 'brushStrength', 0.05, 1, 0.01).name('strength').onChange(() => actions.brush());
+  sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
 
   const view = gui.addFolder('Display');
   view.add(state, 'shading', ['matcap', 'standard']).name('shading').onChange(() => actions.display());

@@ -7,9 +7,10 @@
 // Throwing a JS exception from inside C++ frames would skip their destructors (leaks); this way
 // every C++ frame has returned normally before JS throws, and no extra wasm call is needed.
 //
-// One wasm call per frame: grabDrag() does the whole frame (deform, remesh, render-buffer update)
-// and returns the changes with pointers into wasm memory, so the page builds its typed-array views
-// itself (views must be rebuilt after every call anyway: memory growth detaches them).
+// One wasm call per frame: grabDrag() (brushStamp() while brushing) does the whole frame (deform,
+// remesh, render-buffer update) and returns the changes with pointers into wasm memory, so the page
+// builds its typed-array views itself (views must be rebuilt after every call anyway: memory growth
+// detaches them).
 #include <emscripten/bind.h>
 #include <emscripten/em_js.h>
 #include <emscripten/emscripten.h>
@@ -31,6 +32,7 @@
 #include "mesh/build_from_triangles.h"
 #include "sculpt/render_buffers.h"
 #include "sculpt/session.h"
+#include "sculpt/session_file.h"
 
 // Wraps every method of Module.Session so that a recorded C++ error becomes a thrown Error.
 // clang-format off
@@ -192,6 +194,53 @@ class SessionHandle {
   }
   bool grabbing() const { return session_.grabbing(); }
 
+  // A brush stroke (sculpt/brush.h): brushBegin(settings), one brushStamp(samples) per animation
+  // frame, brushEnd(); the stroke is one undo step. Settings: a JSON string or a plain object
+  // {tool, radius, strength, spacing, symmetry, invert} (absolute radius), checked like a session
+  // file's brush step.
+  void brush_begin(const val& settings) {
+    guarded_void([&] {
+      const std::string type = settings.typeOf().as<std::string>();
+      if (type != "string" && (type != "object" || settings.isNull()))
+        throw std::invalid_argument("brushBegin: expected the settings as an object or a JSON string");
+      const std::string text =
+          type == "string" ? settings.as<std::string>() : val::global("JSON").call<std::string>("stringify", settings);
+      session_.brush_begin(sculpt::parse_brush_settings(nlohmann::json::parse(text)));
+      sync(false);
+    });
+  }
+
+  // The frame's pointer samples as one array [x, y, z, pressure, x, y, z, pressure, ...] (surface
+  // points; for the grab brush, the pointer in space), so coalesced pointer events cost one call.
+  // Returns changes() with the timings summed over the samples.
+  val brush_stamp(const val& samples) {
+    return guarded(val::null(), [&] {
+      const std::vector<double> s = copy_typed_array<double>(samples, "Float64Array");
+      if (s.empty() || s.size() % 4 != 0)
+        throw std::invalid_argument("brushStamp: expected x, y, z, pressure for each of at least one sample");
+      sculpt::FrameTimings sum;
+      for (size_t i = 0; i < s.size(); i += 4) {
+        session_.brush_stamp(Point(s[i], s[i + 1], s[i + 2]), s[i + 3]);
+        const sculpt::FrameTimings& t = session_.last_frame();
+        sum.roi_ms += t.roi_ms;
+        sum.deform_ms += t.deform_ms;
+        sum.remesh_ms += t.remesh_ms;
+        sum.total_ms += t.total_ms;
+        sum.stamps += t.stamps;
+      }
+      sync(false);
+      return changes_with(sum);
+    });
+  }
+
+  void brush_end() {
+    guarded_void([&] {
+      session_.brush_end();
+      sync(true);  // brush_end compacts the mesh, like grab_end
+    });
+  }
+  bool brushing() const { return session_.brushing(); }
+
   void remesh(int iterations) {
     guarded_void([&] {
       session_.remesh(iterations);
@@ -244,6 +293,23 @@ class SessionHandle {
     });
   }
 
+  // Autosave (web/autosave.js): the whole state as one Uint8Array (sculpt::Session::save_state,
+  // history within max_history_bytes) and back; memoryBytes() for the load-size check.
+  val save_state(double max_history_bytes) const {
+    return guarded(val::null(), [&] {
+      std::vector<std::uint8_t> bytes = session_.save_state(size_t(std::max(0.0, max_history_bytes)));
+      return val(emscripten::typed_memory_view(bytes.size(), bytes.data())).call<val>("slice");
+    });
+  }
+  void restore_state(const val& bytes) {
+    guarded_void([&] {
+      std::vector<std::uint8_t> data = copy_typed_array<std::uint8_t>(bytes, "Uint8Array");
+      session_.restore_state(data.data(), data.size());
+      sync(true);
+    });
+  }
+  double memory_bytes() const { return double(session_.memory_bytes()); }
+
   val positions() const { return float_view(buffers_.positions(), buffers_.vertex_count()); }
   val normals() const { return float_view(buffers_.normals(), buffers_.vertex_count()); }
   val indices() const {
@@ -252,7 +318,10 @@ class SessionHandle {
 
   // The render changes accumulated since the last changes() (or grabDrag()), plus where the
   // buffers are (byte addresses into wasm memory) and the last frame's core timings.
-  val changes() {
+  val changes() { return changes_with(session_.last_frame()); }
+
+ private:
+  val changes_with(const sculpt::FrameTimings& t) {
     sculpt::RenderChanges c = buffers_.take_pending();
     val r = val::object();
     r.set("reallocated", c.reallocated);
@@ -270,7 +339,6 @@ class SessionHandle {
     r.set("positionsPtr", reinterpret_cast<std::uintptr_t>(buffers_.positions()));
     r.set("normalsPtr", reinterpret_cast<std::uintptr_t>(buffers_.normals()));
     r.set("indicesPtr", reinterpret_cast<std::uintptr_t>(buffers_.indices()));
-    const sculpt::FrameTimings& t = session_.last_frame();
     val ms = val::object();
     ms.set("roi", t.roi_ms);
     ms.set("field", t.field_ms);
@@ -279,11 +347,11 @@ class SessionHandle {
     ms.set("remesh", t.remesh_ms);
     ms.set("total", t.total_ms);
     ms.set("buffers", buffers_ms_);
+    ms.set("stamps", t.stamps);
     r.set("timings", ms);
     return r;
   }
 
- private:
   static val float_view(const float* p, std::uint32_t vertices) {
     return val(emscripten::typed_memory_view(3 * size_t(vertices), p));
   }
@@ -320,6 +388,10 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("grabDrag", &SessionHandle::grab_drag)
       .function("grabEnd", &SessionHandle::grab_end)
       .function("grabbing", &SessionHandle::grabbing)
+      .function("brushBegin", &SessionHandle::brush_begin)
+      .function("brushStamp", &SessionHandle::brush_stamp)
+      .function("brushEnd", &SessionHandle::brush_end)
+      .function("brushing", &SessionHandle::brushing)
       .function("remesh", &SessionHandle::remesh)
       .function("undo", &SessionHandle::undo)
       .function("redo", &SessionHandle::redo)
@@ -328,6 +400,9 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("replay", &SessionHandle::replay)
       .function("stats", &SessionHandle::stats)
       .function("exportMesh", &SessionHandle::export_mesh)
+      .function("saveState", &SessionHandle::save_state)
+      .function("restoreState", &SessionHandle::restore_state)
+      .function("memoryBytes", &SessionHandle::memory_bytes)
       .function("positions", &SessionHandle::positions)
       .function("normals", &SessionHandle::normals)
       .function("indices", &SessionHandle::indices)

@@ -61,10 +61,12 @@ LengthSetting length(const json& j, const std::string& context, const std::strin
   return s;
 }
 
-void check_keys(const json& j, const std::string& context, std::initializer_list<const char*> allowed) {
+void check_keys(const json& j, const std::string& context, std::initializer_list<const char*> allowed,
+                std::initializer_list<const char*> also_allowed = {}) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* a : allowed) ok = ok || it.key() == a;
+    for (const char* a : also_allowed) ok = ok || it.key() == a;
     if (!ok) throw std::invalid_argument(context + "unknown field '" + it.key() + "'");
   }
 }
@@ -99,18 +101,35 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
 const char* const kAxes[] = {"x", "y", "z"};
 
 BrushStroke parse_brush(const json& b, const std::string& ctx) {
-  if (!b.is_object()) throw std::invalid_argument(ctx + "must be an object");
-  check_keys(b, ctx, {"tool", "path", "radius", "strength", "spacing", "symmetry", "invert", "pressure"});
-  for (const char* k : {"tool", "path", "radius"})
-    if (!b.contains(k)) fail(ctx, k, "is missing");
   BrushStroke s;
-  deform::BrushSettings& st = s.settings;
-  const auto tool = b["tool"].is_string() ? deform::parse_brush_tool(b["tool"].get<std::string>()) : std::nullopt;
-  if (!tool) fail(ctx, "tool", std::string("must be one of ") + deform::brush_tool_list());
-  st.tool = *tool;
+  s.settings = parse_brush_settings(b, ctx, {"path", "pressure"});
+  if (!b.contains("path")) fail(ctx, "path", "is missing");
   const json& path = b["path"];
   if (!path.is_array() || path.empty()) fail(ctx, "path", "must be a non-empty array of [x,y,z] points");
   for (size_t i = 0; i < path.size(); ++i) s.path.push_back(vec3(path[i], ctx, "path[" + std::to_string(i) + "]"));
+  if (b.contains("pressure")) {
+    const json& v = b["pressure"];
+    if (!v.is_array() || v.size() != path.size()) fail(ctx, "pressure", "must be an array with one number per path point");
+    for (const json& x : v) {
+      if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 1))
+        fail(ctx, "pressure", "must hold numbers between 0 and 1");
+      s.pressure.push_back(x.get<double>());
+    }
+  }
+  return s;
+}
+}  // namespace
+
+deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx,
+                                           std::initializer_list<const char*> stroke_keys) {
+  if (!b.is_object()) throw std::invalid_argument(ctx + "must be an object");
+  check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert"}, stroke_keys);
+  for (const char* k : {"tool", "radius"})
+    if (!b.contains(k)) fail(ctx, k, "is missing");
+  deform::BrushSettings st;
+  const auto tool = b["tool"].is_string() ? deform::parse_brush_tool(b["tool"].get<std::string>()) : std::nullopt;
+  if (!tool) fail(ctx, "tool", std::string("must be one of ") + deform::brush_tool_list());
+  st.tool = *tool;
   st.radius = positive_number(b["radius"], ctx, "radius");
   if (b.contains("strength")) {
     const json& v = b["strength"];
@@ -133,18 +152,8 @@ BrushStroke parse_brush(const json& b, const std::string& ctx) {
     if (!b["invert"].is_boolean()) fail(ctx, "invert", "must be true or false");
     st.invert = b["invert"].get<bool>();
   }
-  if (b.contains("pressure")) {
-    const json& v = b["pressure"];
-    if (!v.is_array() || v.size() != path.size()) fail(ctx, "pressure", "must be an array with one number per path point");
-    for (const json& x : v) {
-      if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 1))
-        fail(ctx, "pressure", "must hold numbers between 0 and 1");
-      s.pressure.push_back(x.get<double>());
-    }
-  }
-  return s;
+  return st;
 }
-}  // namespace
 
 SettingsPatch parse_settings(const json& s, const std::string& ctx) {
   if (!s.is_object()) throw std::invalid_argument(ctx + "must be an object");

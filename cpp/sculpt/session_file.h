@@ -22,6 +22,7 @@
 //
 // Every validation error is a std::invalid_argument with one line naming the step and field:
 //   "step 3 (grab): 'roi_radius' must be a positive number".
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,12 @@ struct SettingsPatch {
 // Throws std::invalid_argument "<context>'epsilon' must be ..." (context e.g. "settings: ").
 SettingsPatch parse_settings(const nlohmann::json& s, const std::string& context = "settings: ");
 nlohmann::json to_json(const SettingsPatch& s);
+
+// The settings of a brush stroke (tool, radius, strength, spacing, symmetry, invert), checked as in
+// a brush step; `stroke_keys` are further keys the caller reads itself (a step's path, pressure).
+// Also what the wasm module's brushBegin takes.
+deform::BrushSettings parse_brush_settings(const nlohmann::json& b, const std::string& context = "brush: ",
+                                           std::initializer_list<const char*> stroke_keys = {});
 
 struct GrabStep {
   Point center{0.0};
