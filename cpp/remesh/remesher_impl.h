@@ -94,6 +94,7 @@ struct Remesher::Impl {
   // ---- set-up (reference.cpp)
   void build_reference();
   void mark_features();
+  void drop_isolated_features();
   void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   void average_feature_sizing(const std::vector<Vertex>& vertices);

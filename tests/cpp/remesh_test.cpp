@@ -2,9 +2,12 @@
 // shared meshes, feature and boundary preservation, region restriction and determinism.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -256,4 +259,36 @@ TEST(Remesh, OptionsAreChecked) {
   EXPECT_DOUBLE_EQ(remesh::parse_length("0.25", 4.0, "x"), 0.25);
   EXPECT_THROW(remesh::parse_length("abc", 4.0, "--epsilon"), std::invalid_argument);
   EXPECT_THROW(remesh::parse_length("", 4.0, "--epsilon"), std::invalid_argument);
+}
+
+TEST(Remesh, IsolatedSharpSliverIsNotAFeatureLine) {
+  // A flat 20 x 20 grid where one vertex sits next to the edge between two of its neighbours,
+  // a little above the plane: that face is a 24/24/132-degree cap tilted against its
+  // neighbours, so with --features 45 its three edges (dihedral 48-66 degrees), and only they,
+  // are "sharp". rocker_arm.off has such a face (7/162/12 degrees); kept as a closed
+  // three-edge feature line, relaxation slid its corners together and the triangles around
+  // the shrunken loop kept 5 (there) and 20 (here) degree angles. No feature line runs
+  // through it: it is ordinary surface.
+  const int n = 20;
+  const double cell = 1.0 / n;
+  auto index = [&](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
+  std::vector<std::array<double, 3>> points;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) points.push_back({-0.5 + i * cell, -0.5 + j * cell, 0.0});
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      triangles.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1)});
+      triangles.push_back({index(i, j), index(i + 1, j + 1), index(i, j + 1)});
+    }
+  const auto& base = points[index(7, 10)];
+  points[index(6, 10)] = {base[0] - 0.1 * cell, base[1] + 0.5 * cell, 0.2 * cell};
+  SurfaceMesh input = mesh::build_from_triangles(points, triangles);
+  SurfaceMesh m = input;
+  remesh::RemeshOptions o = remesh::default_options_for(input);
+  o.feature_angle_deg = 45;
+  remesh::remesh(m, o);
+  m.validate();
+  EXPECT_EQ(geometry::boundary_loops(m), 1);
+  EXPECT_GE(geometry::quality_report(m).min_angle_deg, 25.0);
 }
