@@ -20,6 +20,9 @@
 //   ADASCULPT_SOAK_SEED=N         random seed (default 1; deterministic for a given seed)
 //   ADASCULPT_SOAK_MAX_RSS_MB=N   peak RSS limit (VmHWM, default 4096)
 //   ADASCULPT_SOAK_PROGRESS_EVERY=N  a progress line every N steps per mesh (default 500)
+//   ADASCULPT_SOAK_SECONDS=N      wall-time budget of the whole run, shared out among the meshes in
+//                                 turn: a mesh stops early when its share is spent (validate and the
+//                                 closing checks still run on its last step); lines report steps run
 // Every step is logged in session-file form: on a failure the steps up to it are written to
 // $TMPDIR/adasculpt_soak_<mesh>.json, replayable with `adasculpt replay`.
 // A closing line prints steps, meshes, frames, time, peak RSS and the number of checks passed.
@@ -122,7 +125,8 @@ struct Totals {
 };
 
 // One mesh, `steps` random steps.
-void soak_one(const std::string& name, long steps, long check_every, uint32_t seed, Totals& totals) {
+// seconds > 0: stop after the step that exceeds this wall time (the closing checks still run).
+void soak_one(const std::string& name, long steps, long check_every, uint32_t seed, double seconds, Totals& totals) {
   sculpt::Session s;
   if (name == "icosphere") {
     s.load(mesh::make_icosphere(3));
@@ -348,7 +352,11 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
       return;
     }
     ++totals.checks;
-    if (step % check_every == 0 || step == steps) {
+    // A time-boxed run ends after this step, with the full checks on it.
+    const bool stop =
+        seconds > 0 && step < steps &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_mesh).count() > seconds;
+    if (step % check_every == 0 || step == steps || stop) {
       try {
         s.mesh().validate();
       } catch (const std::exception& e) {
@@ -384,6 +392,12 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
                   proc_status_kb("VmRSS") / 1024, proc_status_kb("VmHWM") / 1024, totals.checks);
       std::fflush(stdout);
     }
+    if (stop) {
+      std::printf("[soak]   %s: time budget %.0f s reached after step %ld of %ld (%zu vertices, %zu faces)\n",
+                  label.c_str(), seconds, step, steps, s.mesh().n_vertices(), s.mesh().n_faces());
+      std::fflush(stdout);
+      break;
+    }
   }
 
   // History bounded and intact: walk all the way back (each snapshot valid) and forward again.
@@ -411,6 +425,7 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
   const long check_every = env_long("ADASCULPT_SOAK_CHECK_EVERY", 20);
   const uint32_t seed = static_cast<uint32_t>(env_long("ADASCULPT_SOAK_SEED", 1));
   const long max_rss_mb = env_long("ADASCULPT_SOAK_MAX_RSS_MB", 4096);
+  const double budget = double(env_long("ADASCULPT_SOAK_SECONDS", 0));  // 0: no time limit
   const std::vector<std::string> meshes = soak_meshes();
   ASSERT_FALSE(meshes.empty());
 
@@ -421,7 +436,10 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
     const long steps = total_steps / long(meshes.size()) + (long(i) < total_steps % long(meshes.size()) ? 1 : 0);
     const Totals before = totals;
     const auto m0 = std::chrono::steady_clock::now();
-    soak_one(meshes[i], steps, check_every, seed + uint32_t(i), totals);
+    // A time budget is shared out among the meshes still to run (what one leaves goes to the next).
+    const double spent = std::chrono::duration<double>(m0 - t0).count();
+    const double share = budget > 0 ? std::max(1.0, (budget - spent) / double(meshes.size() - i)) : 0;
+    soak_one(meshes[i], steps, check_every, seed + uint32_t(i), share, totals);
     if (HasFailure()) return;
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
     std::printf("[soak] %-28s steps %6ld grabs %6ld (frames %7ld) brushes %6ld (samples %7ld, stamps %8ld) "
