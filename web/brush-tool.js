@@ -228,19 +228,30 @@ export class BrushTool {
   }
 
   // The queued samples as surface points (the snake hook: points on its view plane), in one call.
+  // The full raycast walks every triangle (about 3 ms on 120k), so it runs once per frame, for the
+  // last sample; the coalesced ones before it, a few pixels apart, go on the tangent plane of the
+  // previous hit (the core projects every sample onto the surface near the previous stamp anyway).
   flush() {
     const s = this.stroke;
     const out = [];
-    for (const q of s.pending) {
+    const last = s.pending.length - 1;
+    s.pending.forEach((q, i) => {
       const ray = this.viewer.ray(q.x, q.y);
-      const hit = s.snake ? planeHit(ray, s.plane, s.facing) : raycastSurface(this.core.geometry(), ray);
-      if (!hit) continue; // off the surface: the stroke resumes where the pointer comes back
+      const hit = s.snake ? planeHit(ray, s.plane, s.facing)
+        : (i < last && this.nearHit(ray, s.hit)) || raycastSurface(this.core.geometry(), ray);
+      if (!hit) return; // off the surface: the stroke resumes where the pointer comes back
       out.push(hit.point.x, hit.point.y, hit.point.z, q.pressure);
       s.hit = hit;
-    }
+    });
     s.pending.length = 0;
     if (out.length) this.core.stamp(new Float64Array(out));
     this.updateCursor();
+  }
+
+  // The ray on the tangent plane of `prev`, if that is within half a brush radius of it.
+  nearHit(ray, prev) {
+    const hit = planeHit(ray, new THREE.Plane().setFromNormalAndCoplanarPoint(prev.normal, prev.point), prev.normal);
+    return hit && hit.point.distanceTo(prev.point) < 0.5 * this.core.radius() ? hit : null;
   }
 
   updateCursor() {
