@@ -25,6 +25,43 @@ export interface SculptAppOptions {
   ui?: boolean;
   /** `'global'`: keyboard shortcuts on `window`; default `'focus'`: only while the app has the focus. */
   keyboard?: 'global' | 'focus';
+  /**
+   * IndexedDB autosave under this key (one record per key): after each change, debounced, the mesh,
+   * settings and newest undo steps are saved; on start-up a saved session is offered (Restore /
+   * Discard). Default `false`; the standalone page uses `'main'`.
+   */
+  autosave?: string | false;
+}
+
+/** What an autosave record holds (without the data). */
+export interface AutosaveInfo {
+  key: string;
+  /** Name of the file the session started from. */
+  name: string;
+  vertices: number;
+  faces: number;
+  /** `Date.now()` of the write. */
+  savedAt: number;
+  /** Size of the saved state (mesh + history) in bytes. */
+  bytes: number;
+}
+
+export interface Autosave {
+  /** False when the app was created without the `autosave` option (every method then does nothing). */
+  readonly enabled: boolean;
+  readonly key: string | null;
+  /** A restore offer is on screen (nothing is written until it is answered). */
+  readonly pending: boolean;
+  /** The message of the last failed write, or null. */
+  readonly lastError: string | null;
+  /** Writes now if something changed since the last write; true when written. */
+  flush(): Promise<boolean>;
+  /** What is saved, or null. */
+  saved(): Promise<AutosaveInfo | null>;
+  /** Loads the saved mesh, settings and undo/redo history; null when nothing is saved. Rejects on a damaged record (the mesh stays). */
+  restore(): Promise<Omit<AutosaveInfo, 'key' | 'bytes'> | null>;
+  /** Deletes the saved record and hides the offer. */
+  clear(): Promise<void>;
 }
 
 export interface SculptParams {
@@ -131,7 +168,11 @@ export interface FrameLogEntry {
 
 /** The page API: `window.app` on the standalone page, or what `createSculptApp` resolves to. */
 export interface SculptApp {
-  /** Replaces the mesh (undo history and settings reset). Rejects with the reader's message; the mesh stays. */
+  /**
+   * Replaces the mesh (undo history and settings reset). Rejects with the reader's message; the mesh stays.
+   * A file that would need more wasm memory than the page can use (2 GB minus the current mesh and its
+   * history; estimated from the header or the size) is refused before it is read.
+   */
   load(source: MeshSource, format?: MeshFormat): Promise<{ vertices: number; faces: number }>;
   /** Throws on an unknown key or a bad value (nothing changes then). Returns the core's settings. */
   setParams(params: SculptParams): CoreSettings;
@@ -171,6 +212,8 @@ export interface SculptApp {
   takeFrameLog(): FrameLogEntry[];
   /** Frees the wasm Session and instance, GPU resources (geometries, materials, textures, the WebGL context), the DOM it added and every listener. Idempotent. */
   dispose(): void;
+  /** The IndexedDB autosave (see `SculptAppOptions.autosave`). */
+  readonly autosave: Autosave;
   /** The Emscripten module instance of this app (advanced use). */
   readonly module: unknown;
   /** The embind `Session` of this app (advanced use; deleted by `dispose`). */

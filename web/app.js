@@ -10,7 +10,9 @@
 //   undo(), redo()  -> boolean;  replay(sessionJson) -> Promise<report>;  stats();  export(format) -> Promise<ArrayBuffer>
 //   dispose()  frees the wasm instance, GPU resources, DOM and every listener.
 // options: model (URL of the first model, null for none), wasmUrl (adasculpt.js), ui (panel and
-// overlays, default true), keyboard ('global': shortcuts on window; default: when the app has focus).
+// overlays, default true), keyboard ('global': shortcuts on window; default: when the app has focus),
+// autosave (a key: save to IndexedDB after each change and offer to restore on start-up, see
+// web/autosave.js; default false; the standalone page uses 'main').
 import { instantiateCore } from './wasm-module.js';
 import { createViewer } from './viewer.js';
 import { MeshBuffers } from './mesh-buffers.js';
@@ -21,6 +23,8 @@ import { createPanel, SAMPLES } from './panel.js';
 import { createStatsOverlay } from './stats-overlay.js';
 import { createFileInput, createToaster, download } from './file-io.js';
 import { STYLE } from './style.js';
+import { createAutosave, noAutosave } from './autosave.js';
+import { checkMemory, isOutOfMemory, outOfMemoryMessage } from './memory-estimate.js';
 import * as THREE from 'three';
 
 const DEFAULT_STATE = {
@@ -55,6 +59,19 @@ export async function createSculptApp(container, options = {}) {
   let quality = {};
   const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0, dragged: false };
   const frameLog = []; // per grab frame: core phases, buffer update, copy, render (for benchmarks)
+  let sourceName = opts.model ? String(opts.model).split(/[?#]/)[0].split('/').pop() : 'mesh';
+  const autosave = opts.autosave ? createAutosave(String(opts.autosave), {
+    session, toaster, root: opts.ui ? root : null,
+    busy: () => !!remeshing || tool.active || session.grabbing() || (!!session.brushing && session.brushing()),
+    sourceName: () => sourceName,
+    restored: (record) => {
+      sourceName = record.name;
+      sync();
+      readSettings();
+      viewer.fitView(buffers.boundingBox());
+      refreshQuality();
+    },
+  }) : noAutosave();
 
   // ---- keeping three.js in step with the core
   function sync(changes) {
@@ -97,7 +114,12 @@ export async function createSculptApp(container, options = {}) {
 
   function loadBytes({ bytes, name }) {
     if (disposed) throw new Error('app disposed');
-    session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
+    try {
+      session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
+    } catch (e) {
+      throw isOutOfMemory(e) ? new Error(outOfMemoryMessage(name, session.memoryBytes())) : e;
+    }
+    sourceName = name;
     sync();
     readSettings();
     viewer.fitView(buffers.boundingBox());
@@ -108,6 +130,13 @@ export async function createSculptApp(container, options = {}) {
   function afterWholeMeshChange() {
     sync();
     refreshQuality();
+    autosave.changed();
+  }
+
+  // Refuses a file the page has no memory for before the core reads it (web/memory-estimate.js).
+  function checkFits(head, size, name) {
+    const c = checkMemory(head, size, name, session.memoryBytes());
+    if (!c.ok) throw new Error(c.message);
   }
 
   // ---- the page API
@@ -116,8 +145,21 @@ export async function createSculptApp(container, options = {}) {
     get session() { return session; },
 
     async load(source, format) {
-      return loadBytes(await readSource(source, format));
+      const isBlob = typeof Blob !== 'undefined' && source instanceof Blob;
+      if (isBlob) {  // only the header is read before deciding
+        const name = format ? `x.${String(format).replace(/^\./, '')}` : (source.name || 'mesh');
+        const c = checkMemory(new Uint8Array(await source.slice(0, 65536).arrayBuffer()), source.size, name,
+          session.memoryBytes());
+        if (!c.ok) throw new Error(c.message.replace(/^[^:]*:/, `${source.name || 'mesh'}:`));
+      }
+      const src = await readSource(source, format);
+      if (!isBlob) checkFits(src.bytes, src.bytes.length, src.name);
+      const result = loadBytes(src);
+      autosave.changed();
+      return result;
     },
+    // IndexedDB autosave (web/autosave.js): flush(), restore(), clear(), saved(), pending, enabled.
+    get autosave() { return autosave; },
 
     setParams(p = {}) {
       const keys = { epsilon: 'epsilon', minLength: 'min_length', maxLength: 'max_length', features: 'features' };
@@ -129,6 +171,7 @@ export async function createSculptApp(container, options = {}) {
         else s[keys[k]] = v;
       }
       session.setSettings(JSON.stringify(s));
+      autosave.changed();
       Object.assign(state, radius);
       if (radius.handleRadius !== undefined || radius.roiRadius !== undefined) tool.updateBrush();
       return readSettings();
@@ -183,6 +226,7 @@ export async function createSculptApp(container, options = {}) {
         if (!disposed) {
           if (panel) panel.setProgress(null);
           refreshQuality();
+          autosave.changed();
         }
       }
       return api.stats();
@@ -390,6 +434,7 @@ export async function createSculptApp(container, options = {}) {
     if (disposed) return;
     disposed = true;
     cancelAnimationFrame(raf);
+    autosave.dispose();
     keyTarget.removeEventListener('keydown', onKey);
     tool.dispose();
     brushTool.dispose();
@@ -415,6 +460,7 @@ export async function createSculptApp(container, options = {}) {
       toaster.show(`Could not load ${opts.model}: ${e.message}`, 'error');
     }
   }
+  autosave.offer(); // the prompt appears when IndexedDB answers; the app does not wait for it
   return api;
 }
 

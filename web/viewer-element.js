@@ -8,6 +8,8 @@
 //   epsilon, min-length, max-length   number = absolute, "x%" = percent of the bounding-box diagonal
 //   features       dihedral angle in degrees, 0 = off      wasm-url    URL of adasculpt.js (restarts the app)
 //   handle-radius, roi-radius          grab radii, same units as the lengths
+//   autosave       a key: autosave to IndexedDB under it and offer to restore (absent: no autosave;
+//                  empty: the key 'viewer')
 // The element is a block (400 px high unless the page sizes it) and the app follows its size.
 // `element.app` is the page API (web/adasculpt.d.ts) once the `adasculpt-ready` event has fired;
 // `adasculpt-error` carries {detail: Error} for a failed start, load or parameter. Removing the
@@ -18,7 +20,7 @@ const PARAMS = {
   epsilon: 'epsilon', 'min-length': 'minLength', 'max-length': 'maxLength', features: 'features',
   'handle-radius': 'handleRadius', 'roi-radius': 'roiRadius',
 };
-const RESTART = ['ui', 'wasm-url'];
+const RESTART = ['ui', 'wasm-url', 'autosave'];
 
 // Zero specificity: any rule of the host page wins.
 const ELEMENT_STYLE = ':where(adasculpt-viewer) { display: block; position: relative; height: 400px; }';
@@ -68,6 +70,7 @@ export class AdasculptViewerElement extends HTMLElement {
         model: this.getAttribute('src') || null,
         ui: this.getAttribute('ui') !== 'off',
         ...(this.hasAttribute('wasm-url') ? { wasmUrl: this.getAttribute('wasm-url') } : {}),
+        ...(this.hasAttribute('autosave') ? { autosave: this.getAttribute('autosave') || 'viewer' } : {}),
       });
     } catch (e) {
       if (generation === this.#generation) this.#fail(e);
