@@ -1,0 +1,77 @@
+// node:test of the wasm Session's autosave calls (saveState, restoreState, memoryBytes) that
+// web/autosave.js uses: a restored session exports the same bytes, keeps its settings and its
+// undo/redo history, a damaged state is refused with the mesh kept, and the history budget holds.
+const test = require('node:test');
+const assert = require('node:assert');
+const fs = require('node:fs');
+const path = require('node:path');
+
+const root = path.join(__dirname, '..', '..');
+const wasmDir = process.env.ADASCULPT_WASM_DIR || path.join(root, 'public', 'wasm');
+const haveWasm = fs.existsSync(path.join(wasmDir, 'adasculpt.wasm'));
+const skip = !haveWasm && `no wasm module in ${wasmDir} (scripts/build.sh wasm)`;
+const sphereObj = fs.readFileSync(path.join(root, 'public', 'models', 'sphere.obj'));
+
+let M;
+test.before(async () => {
+  if (!haveWasm) return;
+  const create = require(path.join(wasmDir, 'adasculpt.js'));
+  M = await create({ wasmBinary: fs.readFileSync(path.join(wasmDir, 'adasculpt.wasm')) });
+});
+
+const ply = (s) => Buffer.from(s.exportMesh('ply'));
+function pull(s, c, t) {
+  s.grabBegin(c[0], c[1], c[2], 0.1, 0.6);
+  for (let i = 1; i <= 4; i++) s.grabDrag((t[0] * i) / 4, (t[1] * i) / 4, (t[2] * i) / 4, 0, 0, 1, 0, 1);
+  s.grabEnd();
+}
+
+test('saveState / restoreState: same mesh, settings and history in a new Session', { skip }, () => {
+  const a = new M.Session(), b = new M.Session();
+  try {
+    a.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    const m0 = ply(a);
+    pull(a, [0, 0, 1], [0, 0, 0.4]);
+    const m1 = ply(a);
+    a.setSettings(JSON.stringify({ epsilon: '0.1%' }));
+    pull(a, [1, 0, 0], [0.3, 0, 0]);
+    const m2 = ply(a);
+    assert.ok(a.memoryBytes() > 3 * 5120 * 8, 'mesh and two snapshots');
+    const state = a.saveState(96 * 2 ** 20);
+    assert.ok(state instanceof Uint8Array);
+
+    b.restoreState(state);
+    assert.ok(ply(b).equals(m2));
+    assert.strictEqual(b.settings(), a.settings());
+    assert.ok(b.canUndo() && !b.canRedo());
+    assert.ok(b.undo());
+    assert.ok(ply(b).equals(m1));
+    assert.ok(b.undo());
+    assert.ok(ply(b).equals(m0));
+    assert.strictEqual(b.undo(), false);
+    assert.ok(b.redo() && b.redo());
+    assert.ok(ply(b).equals(m2));
+    // The render buffers follow the restored mesh.
+    assert.strictEqual(b.changes().vertexCount, JSON.parse(b.stats()).vertices);
+
+    // Budget 0: the mesh without history.
+    b.restoreState(a.saveState(0));
+    assert.ok(ply(b).equals(m2));
+    assert.strictEqual(b.canUndo(), false);
+
+    // A damaged state is refused and changes nothing; ArrayBuffers are accepted too.
+    const cut = state.slice(0, state.length - 7);
+    assert.throws(() => b.restoreState(cut), /saved state: truncated/);
+    assert.ok(ply(b).equals(m2));
+    assert.throws(() => b.restoreState(new Uint8Array([1, 2, 3])), /saved state: not an adasculpt state/);
+    b.restoreState(state.buffer.slice(state.byteOffset, state.byteOffset + state.byteLength));
+    assert.ok(b.canUndo());
+    // Mid-grab: refused (the autosave waits for the grab to end).
+    b.grabBegin(0, 0, 1, 0.1, 0.5);
+    assert.throws(() => b.saveState(1e6), /a grab or a stroke is in progress/);
+    b.grabEnd();
+  } finally {
+    a.delete();
+    b.delete();
+  }
+});
