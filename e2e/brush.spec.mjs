@@ -98,6 +98,11 @@ test('the palette: keys 1-8 and the buttons pick tools; brush defaults, symmetry
   await page.keyboard.press('=');
   expect(Number(await radius.inputValue())).toBeGreaterThan(r0);
   expect(Number(await strength.inputValue())).toBeGreaterThan(s0);
+  // setParams sets the same brush settings.
+  await page.evaluate(() => window.app.setParams({ brushRadius: '8%', brushStrength: 0.3, symmetry: 'z' }));
+  await expect(radius).toHaveValue('8');
+  await expect(strength).toHaveValue('0.3');
+  await expect(symmetry).toHaveValue('z');
   const message = await page.evaluate(() => { try { window.app.setTool('hammer'); return ''; } catch (e) { return e.message; } });
   expect(message).toContain("unknown tool 'hammer'");
   // The help line documents the keys.

@@ -74,6 +74,10 @@ export interface SculptParams {
   /** Default grab radii (geodesic) for mouse grabs and `grab.begin` without radii. */
   handleRadius?: Length;
   roiRadius?: Length;
+  /** The brushes' radius, strength (0..1) and mirror symmetry (the panel's Brush folder; `brush.*` defaults). */
+  brushRadius?: Length;
+  brushStrength?: number;
+  symmetry?: 'x' | 'y' | 'z' | 'off' | 'none';
 }
 
 /** The core's settings, absolute lengths. */

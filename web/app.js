@@ -17,7 +17,7 @@ import { instantiateCore } from './wasm-module.js';
 import { createViewer } from './viewer.js';
 import { MeshBuffers } from './mesh-buffers.js';
 import { GrabTool } from './grab-tool.js';
-import { BrushTool, BRUSH_STATE, createBrushApi } from './brush-tool.js';
+import { BrushTool, BRUSH_STATE, BRUSH_PARAMS, createBrushApi } from './brush-tool.js';
 import { ToolPalette } from './tool-palette.js';
 import { createPanel, SAMPLES } from './panel.js';
 import { createStatsOverlay } from './stats-overlay.js';
@@ -164,16 +164,19 @@ export async function createSculptApp(container, options = {}) {
     setParams(p = {}) {
       const keys = { epsilon: 'epsilon', minLength: 'min_length', maxLength: 'max_length', features: 'features' };
       const s = {};
-      const radius = {}; // handleRadius, roiRadius: the grab tool's defaults, kept in percent like the panel
+      const radius = {}; // handleRadius, roiRadius, brushRadius: the tools' defaults, kept in percent like the panel
+      const brush = {}; // brushStrength, symmetry
       for (const [k, v] of Object.entries(p)) {
-        if (k === 'handleRadius' || k === 'roiRadius') radius[k] = percentOfDiagonal(v, k, diagonal);
+        if (['handleRadius', 'roiRadius', 'brushRadius'].includes(k)) radius[k] = percentOfDiagonal(v, k, diagonal);
+        else if (k in BRUSH_PARAMS) brush[k] = BRUSH_PARAMS[k](v);
         else if (!(k in keys)) throw new Error(`setParams: unknown parameter '${k}'`);
         else s[keys[k]] = v;
       }
       session.setSettings(JSON.stringify(s));
       autosave.changed();
-      Object.assign(state, radius);
+      Object.assign(state, radius, brush);
       if (radius.handleRadius !== undefined || radius.roiRadius !== undefined) tool.updateBrush();
+      brushTool.updateCursor();
       return readSettings();
     },
 

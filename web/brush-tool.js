@@ -29,6 +29,19 @@ export const SYMMETRY = ['x', 'y', 'z', 'off'];
 // The brush part of the app state (radius in percent of the diagonal, like the panel's lengths).
 export const BRUSH_STATE = { tool: 'pull', brushRadius: 5, brushStrength: 0.5, symmetry: 'x' };
 
+// setParams keys of the brushes besides brushRadius (a length, handled with the grab radii): checked values.
+export const BRUSH_PARAMS = {
+  brushStrength(v) {
+    if (typeof v !== 'number' || !(v >= 0 && v <= 1)) throw new Error('setParams: brushStrength must be a number between 0 and 1');
+    return v;
+  },
+  symmetry(v) {
+    const s = v === 'none' ? 'off' : v;
+    if (!SYMMETRY.includes(s)) throw new Error(`setParams: symmetry must be one of ${SYMMETRY.join(', ')}`);
+    return s;
+  },
+};
+
 const STRENGTH_STEP = 0.05;
 const RADIUS_FACTOR = 1.15;
 
