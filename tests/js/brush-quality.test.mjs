@@ -20,9 +20,10 @@ const CASES = [
   ['draw', 'inflate', 'crease', 'pinch', 'flatten', 'smooth'],
 ];
 
-function checkTargets(what, m, before, length) {
+// `length`: the edge length the region should reach (within 25 %), or null to skip that check.
+function checkTargets(what, m, length) {
   assert.ok(m.faces > 0 && m.interior > 0, `${what}: a region`);
-  assert.ok(m.meanEdge < 1.25 * length && m.meanEdge > 0.75 * length, `${what}: edge length near ${length}`);
+  if (length) assert.ok(m.meanEdge < 1.25 * length && m.meanEdge > 0.75 * length, `${what}: edge length near ${length}`);
   assert.ok(m.pctUnder30 <= 10, `${what}: at most 10 % of the triangles under 30°`);
   assert.ok(m.pctValence5to7 >= 90, `${what}: at least 90 % of interior vertices of valence 5-7`);
   assert.ok(m.minAngle > 10, `${what}: no sliver`);
@@ -44,7 +45,7 @@ for (const spec of MESHES) {
         const s = tools[0] === 'grab' ? grab : stroke;
         const ours = L.runOurs(M, mesh, tools.map((tool) => ({ tool, stroke: s })), { length });
         const m = L.brushedRegionMetrics(ours.mesh, s);
-        checkTargets(`${spec.name} ${tools.join('+')}: ${JSON.stringify(m)}`, m, before, length);
+        checkTargets(`${spec.name} ${tools.join('+')}: ${JSON.stringify(m)}`, m, length);
       });
     }
   });
@@ -55,7 +56,9 @@ for (const spec of MESHES) {
 // the triangles under 30° sit in the outer third of the brush, where the remeshed region meets the
 // untouched fine mesh: Remesher::iterate_region gives the whole region the uniform target (no
 // grading from the held border's own edge length) and splits the border's held-held edges, whose
-// outer triangles no pass improves. A fix belongs in cpp/remesh (see the issue #7 notes).
+// outer triangles no pass improves. A fix belongs in cpp/remesh (issue #7 notes: held border
+// edges not split + held vertices keeping their own edge length as sizing, graded by the 0.2
+// gradient limit, brought this case to 0.1 % under 30° in a native experiment).
 const COARSEN_TODO = 'iterate_region needs sizing graded from the region border (cpp/remesh)';
 test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip, todo: COARSEN_TODO }, async (t) => {
   const mesh0 = L.readMesh(M, MESHES[1].file);
@@ -79,7 +82,10 @@ test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip,
     await t.test(tool, { todo: COARSEN_TODO }, () => {
       const st = tool === 'grab' ? grab : stroke;
       const m = L.brushedRegionMetrics(L.runOurs(M, mesh, [{ tool, stroke: st }], { length }).mesh, st);
-      checkTargets(`coarsening ${tool}: ${JSON.stringify(m)}`, m, before, length);
+      const what = `coarsening ${tool}: ${JSON.stringify(m)}`;
+      // A graded transition from the fine surroundings may keep the region finer than `length`.
+      assert.ok(m.meanEdge > 1.2 * before.meanEdge, `${what}: the region was coarsened`);
+      checkTargets(what, m, null);
     });
   }
 });
