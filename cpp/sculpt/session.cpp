@@ -39,23 +39,49 @@ constexpr uint32_t kStateVersion = 1;
 
 size_t serialized_size(const mesh::SurfaceMesh& m) { return 8 + m.n_vertices() * 24 + m.n_faces() * 12; }
 
-struct StateWriter {
-  std::vector<uint8_t> out;
-  template <class T>
-  void put(const T& v) {
-    const auto* p = reinterpret_cast<const uint8_t*>(&v);
-    out.insert(out.end(), p, p + sizeof(T));
+template <class T>
+void put(std::vector<uint8_t>& out, const T& v) {
+  const auto* p = reinterpret_cast<const uint8_t*>(&v);
+  out.insert(out.end(), p, p + sizeof(T));
+}
+
+// One mesh of the blob: u32 vertices, u32 triangles, f64 xyz..., u32 abc...
+std::vector<uint8_t> pack_mesh(const mesh::SurfaceMesh& m) {
+  const io::PolygonSoup soup = io::soup_from_mesh(m);
+  const uint32_t nv = uint32_t(soup.points.size()), nf = uint32_t(soup.triangles.size());
+  std::vector<uint8_t> out(8 + size_t(nv) * 24 + size_t(nf) * 12);
+  uint8_t* o = out.data();
+  std::memcpy(o, &nv, 4);
+  std::memcpy(o + 4, &nf, 4);
+  if (nv) std::memcpy(o + 8, soup.points.data(), size_t(nv) * 24);
+  o += 8 + size_t(nv) * 24;
+  // Rotated so that build_from_triangles (whose face halfedge ends at the second corner) gives
+  // back the same face_vertices() order: a save after a restore is byte-identical.
+  for (const auto& t : soup.triangles) {
+    const uint32_t r[3] = {t[2], t[0], t[1]};
+    std::memcpy(o, r, 12);
+    o += 12;
   }
-  void put_mesh(const mesh::SurfaceMesh& m) {
-    const io::PolygonSoup soup = io::soup_from_mesh(m);
-    put(uint32_t(soup.points.size()));
-    put(uint32_t(soup.triangles.size()));
-    for (const auto& p : soup.points) put(p);
-    // Rotated so that build_from_triangles (whose face halfedge ends at the second corner) gives
-    // back the same face_vertices() order: a save after a restore is byte-identical.
-    for (const auto& t : soup.triangles) put(std::array<uint32_t, 3>{t[2], t[0], t[1]});
+  return out;
+}
+
+// A packed mesh checked by StateReader::mesh_bytes (counts, finite positions, indices in range).
+mesh::SurfaceMesh unpack_mesh(const std::vector<uint8_t>& bytes) {
+  uint32_t nv, nf;
+  std::memcpy(&nv, bytes.data(), 4);
+  std::memcpy(&nf, bytes.data() + 4, 4);
+  std::vector<std::array<double, 3>> points(nv);
+  std::vector<std::array<uint32_t, 3>> tris(nf);
+  if (nv) std::memcpy(points.data(), bytes.data() + 8, size_t(nv) * 24);
+  if (nf) std::memcpy(tris.data(), bytes.data() + 8 + size_t(nv) * 24, size_t(nf) * 12);
+  try {
+    return mesh::build_from_triangles(points, tris);
+  } catch (const mesh::TopologyError& e) {
+    throw std::invalid_argument(std::string("saved state: ") + e.what());
   }
-};
+}
+
+using Packed = std::shared_ptr<const std::vector<uint8_t>>;
 
 struct StateReader {
   const uint8_t* p;
@@ -72,27 +98,17 @@ struct StateReader {
     left -= sizeof(T);
     return v;
   }
-  mesh::SurfaceMesh get_mesh() {
+  // The next packed mesh, checked (everything but the topology, which building checks).
+  std::vector<uint8_t> mesh_bytes() {
+    const uint8_t* begin = p;
     const uint64_t nv = get<uint32_t>(), nf = get<uint32_t>();
     if (nv * 24 + nf * 12 > left) fail("truncated mesh");
-    std::vector<std::array<double, 3>> points(nv);
-    std::vector<std::array<uint32_t, 3>> tris(nf);
-    for (auto& x : points) {
-      x = get<std::array<double, 3>>();
-      for (double c : x)
-        if (!std::isfinite(c)) fail("non-finite position");
-    }
-    for (auto& t : tris) {
-      t = get<std::array<uint32_t, 3>>();
-      for (uint32_t i : t)
-        if (i >= nv) fail("vertex index out of range");
-    }
     if (nf == 0) fail("a mesh without faces");
-    try {
-      return mesh::build_from_triangles(points, tris);
-    } catch (const mesh::TopologyError& e) {
-      fail(e.what());
-    }
+    for (uint64_t i = 0; i < 3 * nv; ++i)
+      if (!std::isfinite(get<double>())) fail("non-finite position");
+    for (uint64_t i = 0; i < 3 * nf; ++i)
+      if (get<uint32_t>() >= nv) fail("vertex index out of range");
+    return std::vector<uint8_t>(begin, p);
   }
 };
 
@@ -111,7 +127,24 @@ struct Session::Impl {
   double diagonal = 0;
   remesh::RemeshOptions options;  // adaptive; epsilon/min/max/features resolved to absolute values
 
-  std::deque<mesh::SurfaceMesh> undo, redo;  // meshes before / after the steps
+  // One undo or redo step: the mesh, or (restored from a saved state and not needed yet) only its
+  // packed bytes, which save_state() also keeps as a cache so that unchanged steps are serialized once.
+  struct Snapshot {
+    mesh::SurfaceMesh mesh;
+    bool built = true;
+    mutable Packed packed;
+    explicit Snapshot(mesh::SurfaceMesh m) : mesh(std::move(m)) {}
+    explicit Snapshot(Packed p) : built(false), packed(std::move(p)) {}
+    // For the history budget (the cache of a built mesh is not counted: it comes and goes).
+    size_t bytes() const { return built ? mesh_bytes(mesh) : packed->size(); }
+    size_t packed_size() const { return packed ? packed->size() : serialized_size(mesh); }
+    const std::vector<uint8_t>& pack() const {
+      if (!packed) packed = std::make_shared<const std::vector<uint8_t>>(pack_mesh(mesh));
+      return *packed;
+    }
+    mesh::SurfaceMesh take() { return built ? std::move(mesh) : unpack_mesh(*packed); }
+  };
+  std::deque<Snapshot> undo, redo;  // meshes before / after the steps
   size_t undo_bytes = 0;
 
   deform::HandleDeformer deformer;
@@ -143,11 +176,11 @@ struct Session::Impl {
     if (!has_mesh) throw std::logic_error(std::string(what) + ": no mesh loaded");
   }
   void push_undo() {
-    undo.push_back(mesh);
-    undo_bytes += mesh_bytes(undo.back());
+    undo.emplace_back(mesh);
+    undo_bytes += undo.back().bytes();
     redo.clear();
     while (undo.size() > kMaxUndoSteps || (undo.size() > 1 && undo_bytes > kMaxUndoBytes)) {
-      undo_bytes -= mesh_bytes(undo.front());
+      undo_bytes -= undo.front().bytes();
       undo.pop_front();
     }
   }
@@ -335,10 +368,12 @@ bool Session::undo() {
   Impl& s = *impl_;
   s.end_grab();
   if (s.undo.empty()) return false;
-  s.redo.push_back(std::move(s.mesh));
-  s.mesh = std::move(s.undo.back());
-  s.undo_bytes -= mesh_bytes(s.mesh);
+  const size_t bytes = s.undo.back().bytes();
+  mesh::SurfaceMesh m = s.undo.back().take();  // builds a restored step; throws before any change
+  s.undo_bytes -= bytes;
   s.undo.pop_back();
+  s.redo.emplace_back(std::move(s.mesh));
+  s.mesh = std::move(m);
   s.mesh_replaced();
   return true;
 }
@@ -347,10 +382,11 @@ bool Session::redo() {
   Impl& s = *impl_;
   s.end_grab();
   if (s.redo.empty()) return false;
-  s.undo.push_back(std::move(s.mesh));
-  s.undo_bytes += mesh_bytes(s.undo.back());
-  s.mesh = std::move(s.redo.back());
+  mesh::SurfaceMesh m = s.redo.back().take();
   s.redo.pop_back();
+  s.undo.emplace_back(std::move(s.mesh));
+  s.undo_bytes += s.undo.back().bytes();
+  s.mesh = std::move(m);
   s.mesh_replaced();
   return true;
 }
@@ -452,29 +488,34 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
   // Newest undo steps first, then the nearest redo steps, while they fit the budget.
   size_t used = 0, n_undo = 0, n_redo = 0;
   for (auto it = s.undo.rbegin(); it != s.undo.rend(); ++it, ++n_undo) {
-    const size_t b = serialized_size(*it);
+    const size_t b = it->packed_size();
     if (used + b > max_history_bytes) break;
     used += b;
   }
   if (n_undo == s.undo.size())
     for (auto it = s.redo.rbegin(); it != s.redo.rend(); ++it, ++n_redo) {
-      const size_t b = serialized_size(*it);
+      const size_t b = it->packed_size();
       if (used + b > max_history_bytes) break;
       used += b;
     }
-  StateWriter w;
-  w.out.reserve(64 + serialized_size(s.mesh) + used);
-  w.out.insert(w.out.end(), kStateMagic, kStateMagic + 8);
-  w.put(kStateVersion);
+  const std::vector<uint8_t> current = pack_mesh(s.mesh);
+  std::vector<uint8_t> out;
+  out.reserve(64 + current.size() + used);
+  out.insert(out.end(), kStateMagic, kStateMagic + 8);
+  put(out, kStateVersion);
   for (double x : {s.options.epsilon, s.options.min_length, s.options.max_length, s.options.feature_angle_deg,
                    s.diagonal})
-    w.put(x);
-  w.put(uint32_t(n_undo));
-  w.put(uint32_t(n_redo));
-  w.put_mesh(s.mesh);
-  for (size_t i = s.undo.size() - n_undo; i < s.undo.size(); ++i) w.put_mesh(s.undo[i]);
-  for (size_t i = s.redo.size() - n_redo; i < s.redo.size(); ++i) w.put_mesh(s.redo[i]);
-  return std::move(w.out);
+    put(out, x);
+  put(out, uint32_t(n_undo));
+  put(out, uint32_t(n_redo));
+  out.insert(out.end(), current.begin(), current.end());
+  auto append = [&](const Impl::Snapshot& snap) {
+    const std::vector<uint8_t>& b = snap.pack();  // serialized once per step, then cached
+    out.insert(out.end(), b.begin(), b.end());
+  };
+  for (size_t i = s.undo.size() - n_undo; i < s.undo.size(); ++i) append(s.undo[i]);
+  for (size_t i = s.redo.size() - n_redo; i < s.redo.size(); ++i) append(s.redo[i]);
+  return out;
 }
 
 void Session::restore_state(const uint8_t* data, size_t size) {
@@ -488,11 +529,12 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   for (double& x : v) x = r.get<double>();
   const uint32_t n_undo = r.get<uint32_t>(), n_redo = r.get<uint32_t>();
   if (uint64_t(n_undo) + n_redo > (r.left + 1) / 8) r.fail("truncated history");
-  mesh::SurfaceMesh current = r.get_mesh();
-  std::deque<mesh::SurfaceMesh> undo, redo;
-  for (uint32_t i = 0; i < n_undo; ++i) undo.push_back(r.get_mesh());
+  mesh::SurfaceMesh current = unpack_mesh(r.mesh_bytes());
+  // The steps stay packed until undo/redo needs them (a restore costs one mesh build, not one per step).
+  std::deque<Impl::Snapshot> undo, redo;
+  for (uint32_t i = 0; i < n_undo; ++i) undo.emplace_back(std::make_shared<const std::vector<uint8_t>>(r.mesh_bytes()));
   while (undo.size() > kMaxUndoSteps) undo.pop_front();
-  for (uint32_t i = 0; i < n_redo; ++i) redo.push_back(r.get_mesh());
+  for (uint32_t i = 0; i < n_redo; ++i) redo.emplace_back(std::make_shared<const std::vector<uint8_t>>(r.mesh_bytes()));
   if (r.left != 0) r.fail(std::to_string(r.left) + " unexpected bytes at the end");
   remesh::RemeshOptions o = remesh::default_options_for(current);
   o.adaptive = true;
@@ -515,7 +557,7 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   s.undo = std::move(undo);
   s.redo = std::move(redo);
   s.undo_bytes = 0;
-  for (const auto& m : s.undo) s.undo_bytes += mesh_bytes(m);
+  for (const auto& m : s.undo) s.undo_bytes += m.bytes();
   s.options = o;
   s.diagonal = v[4];
   s.last = FrameTimings{};
@@ -528,7 +570,7 @@ size_t Session::memory_bytes() const {
   const Impl& s = *impl_;
   size_t b = s.has_mesh ? mesh_bytes(s.mesh) : 0;
   b += s.undo_bytes;
-  for (const auto& m : s.redo) b += mesh_bytes(m);
+  for (const auto& m : s.redo) b += m.bytes();
   return b;
 }
 

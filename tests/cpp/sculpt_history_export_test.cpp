@@ -159,6 +159,23 @@ TEST(SculptHistoryExport, DamagedBlobsThrowAndChangeNothing) {
   std::memset(&index[first_triangle], 0xff, 4);
   expect_rejected(index, "index out of range");
   expect_rejected({}, "empty");
+
+  // Steps stay packed until undo needs them: a step whose triangles do not form a surface (the
+  // first triangle of the oldest step replaced by the second) restores, then its undo throws and
+  // changes nothing.
+  std::vector<uint8_t> bad_step = blob;
+  const size_t oldest = 8 + 4 + 40 + 8 + 8 + a.states[2].n_vertices() * 24 + a.states[2].n_faces() * 12;
+  const size_t tri0 = oldest + 8 + a.states[0].n_vertices() * 24;
+  std::memcpy(&bad_step[tri0], &bad_step[tri0 + 12], 12);
+  b.restore_state(bad_step.data(), bad_step.size());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[2]));
+  EXPECT_TRUE(b.undo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[1]));
+  EXPECT_THROW(b.undo(), std::invalid_argument);
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[1]));
+  EXPECT_TRUE(b.can_undo());
+  EXPECT_TRUE(b.redo() && b.redo());
+  EXPECT_TRUE(same_geometry(b.mesh(), a.states[3]));
 }
 
 TEST(SculptHistoryExport, RefusedWithoutAMeshOrDuringAGrab) {
