@@ -16,10 +16,8 @@ const mesh = process.env.ADASCULPT_BENCH_MESH || path.join(root, '..', 'shared',
 
 const median = (xs) => { const s = [...xs].sort((a, b) => a - b); return s.length ? s[Math.floor(s.length / 2)] : NaN; };
 
-test('pull on a 100k model: frame medians', async ({ page }) => {
-  test.skip(!process.env.ADASCULPT_BENCH, 'set ADASCULPT_BENCH=1');
-  test.skip(!fs.existsSync(mesh), `no ${mesh}`);
-  test.setTimeout(180_000);
+// Opens the page and loads the benchmark mesh into it.
+async function openWithMesh(page) {
   await page.goto('/');
   await page.waitForFunction(() => document.documentElement.dataset.ready === 'true');
   const b64 = fs.readFileSync(mesh).toString('base64');
@@ -28,6 +26,14 @@ test('pull on a 100k model: frame medians', async ({ page }) => {
     return window.app.load(bytes.buffer, name.split('.').pop());
   }, [b64, path.basename(mesh)]);
   console.log(`${path.basename(mesh)}: ${loaded.vertices} vertices, ${loaded.faces} faces`);
+  return b64;
+}
+
+test('pull on a 100k model: frame medians', async ({ page }) => {
+  test.skip(!process.env.ADASCULPT_BENCH, 'set ADASCULPT_BENCH=1');
+  test.skip(!fs.existsSync(mesh), `no ${mesh}`);
+  test.setTimeout(180_000);
+  const b64 = await openWithMesh(page);
 
   // A person's pull: press on the model centre, move 200 px up over 90 pointer moves.
   const box = await page.locator('canvas').boundingBox();
@@ -70,4 +76,38 @@ test('pull on a 100k model: frame medians', async ({ page }) => {
   } else {
     console.log('no native build/native/adasculpt: native column skipped');
   }
+});
+
+// A draw stroke with the mouse (key 2) across the model: the frame log (brush frames: stamps, core,
+// buffers, copy, render) and the animation-frame interval, which also holds the JS surface raycast.
+test('draw stroke on a 100k model: frame medians', async ({ page }) => {
+  test.skip(!process.env.ADASCULPT_BENCH, 'set ADASCULPT_BENCH=1');
+  test.skip(!fs.existsSync(mesh), `no ${mesh}`);
+  test.setTimeout(180_000);
+  await openWithMesh(page);
+  await page.keyboard.press('2');
+  const box = await page.locator('canvas').boundingBox();
+  const x = box.x + box.width / 3, y = box.y + box.height / 2; // left of the panel, where the model is drawn
+  await page.mouse.move(x, y);
+  await page.evaluate(() => {
+    window.app.takeFrameLog();
+    window.__intervals = [];
+    let last = performance.now();
+    (function tick(now) { window.__intervals.push(now - last); last = now; window.__raf = requestAnimationFrame(tick); })(last);
+  });
+  await page.mouse.down();
+  for (let i = 1; i <= 90; i++) {
+    await page.mouse.move(x + (120 * i) / 90, y - 40 * Math.sin(i / 10));
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
+  }
+  await page.mouse.up();
+  const { frames, intervals } = await page.evaluate(() => {
+    cancelAnimationFrame(window.__raf);
+    return { frames: window.app.takeFrameLog(), intervals: window.__intervals.slice(2) };
+  });
+  const col = (k) => median(frames.map((f) => f[k])).toFixed(2);
+  const phase = (k) => median(frames.map((f) => f.phases[k])).toFixed(2);
+  console.log(`browser, draw stroke: ${frames.length} frames, ${phase('stamps')} stamps per frame; median ms: core ${col('coreMs')} ` +
+    `(deform ${phase('deform')}, remesh ${phase('remesh')}) + buffers ${col('buffersMs')} + copy ${col('copyMs')} ` +
+    `+ render ${col('renderMs')} (SwiftShader) = ${col('totalMs')}; animation frame interval ${median(intervals).toFixed(1)} ms`);
 });
