@@ -125,7 +125,10 @@ class Session {
   static constexpr size_t kDefaultStateHistoryBytes = size_t(96) << 20;
   std::vector<uint8_t> save_state(size_t max_history_bytes = kDefaultStateHistoryBytes) const;
   // Replaces mesh, settings and history with a save_state() blob; all or nothing: a truncated or
-  // corrupt blob throws std::invalid_argument and nothing changes. Ends any grab.
+  // corrupt blob throws std::invalid_argument and nothing changes. Ends any grab. The history
+  // steps stay packed until undo()/redo() reaches them (one mesh build per restore, then one per
+  // step used); a step whose triangles do not form a surface throws std::invalid_argument from
+  // that undo()/redo(), which then changes nothing. save_state() caches each step's bytes.
   void restore_state(const uint8_t* data, size_t size);
   // Undo and redo steps held, and the rough heap size of the mesh plus its history (bytes).
   size_t undo_steps() const;
