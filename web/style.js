@@ -10,9 +10,10 @@ export const STYLE = `
 .adasculpt-stats .phases { color: #9aa3b2; font-size: 11px; }
 .adasculpt-root .adasculpt-panel { position: absolute; right: 10px; top: 10px; max-height: calc(100% - 20px);
   overflow-y: auto; --widget-height: 18px; --spacing: 3px; --padding: 3px; }
-.adasculpt-tools { position: absolute; left: 10px; top: 50%; transform: translateY(-50%); display: flex;
-  flex-direction: column; gap: 3px; }
-.adasculpt-tools button { font: inherit; text-align: left; min-width: 92px; padding: 3px 8px; border-radius: 4px;
+.adasculpt-tools { position: absolute; left: 10px; top: calc(50% + 8px); transform: translateY(-50%); display: flex;
+  flex-direction: column; gap: 2px; }
+.adasculpt-tools button { font: inherit; font-size: 11px; line-height: 1.4; text-align: left; min-width: 84px;
+  padding: 1px 7px; border-radius: 4px;
   border: 1px solid rgba(255, 255, 255, 0.12); background: rgba(18, 20, 25, 0.72); color: #cfd5df; cursor: pointer; }
 .adasculpt-tools button:hover { background: rgba(45, 50, 62, 0.9); }
 .adasculpt-tools button[aria-pressed="true"] { background: #d9822b; border-color: #ffb066; color: #fff; }
