@@ -90,7 +90,15 @@ test('Discard deletes the autosave; nothing is offered on the next visit', async
   const errors = watchErrors(page);
   await page.goto('/');
   await ready(page);
-  await pull(page, [0, 0, 1], [0, 0, 0.3]);
+  // Nothing is written in the middle of a drag, even when asked to.
+  await page.evaluate(() => {
+    window.app.setParams({ epsilon: '0.06%' });
+    window.app.grab.begin({ center: [0, 0, 1], handleRadius: 0.1, roiRadius: 0.6 });
+    window.app.grab.drag({ translate: [0, 0, 0.3] });
+  });
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(false);
+  expect(await page.evaluate(() => window.app.autosave.saved())).toBeNull();
+  await page.evaluate(() => window.app.grab.end());
   expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
   const sculpted = await meshHash(page);
 
@@ -116,6 +124,42 @@ test('Discard deletes the autosave; nothing is offered on the next visit', async
   await expect(prompt(page)).toHaveCount(0);
   expect(await page.evaluate(() => window.app.autosave.restore())).toBeNull();
   expect(errors).toEqual([]);
+});
+
+test('a full storage quota: less history, then none, then a message; the page keeps working', async ({ page }) => {
+  // IndexedDB refuses records larger than window.__quota bytes with a QuotaExceededError.
+  await page.addInitScript(() => {
+    window.__quota = 0;
+    window.__attempts = [];
+    const put = IDBObjectStore.prototype.put;
+    IDBObjectStore.prototype.put = function (value, key) {
+      window.__attempts.push(value && value.bytes);
+      if (value && value.bytes > window.__quota) throw new DOMException('quota', 'QuotaExceededError');
+      return put.call(this, value, key);
+    };
+  });
+  const errors = watchErrors(page);
+  await page.goto('/');
+  await ready(page);
+  await pull(page, [0, 0, 1], [0, 0, 0.3]);
+  await pull(page, [1, 0, 0], [0.3, 0, 0]);
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(false);
+  await expect(page.locator('.adasculpt-toast.error')).toContainText("Autosave failed: the browser's storage is full");
+  const attempts = await page.evaluate(() => window.__attempts);
+  expect(attempts.length).toBe(3);                       // 96 MB of history, 12 MB, none
+  expect(attempts[2]).toBeLessThan(attempts[0]);
+  expect(await page.evaluate(() => window.app.autosave.lastError)).toBe('quota');
+  // Room for the mesh alone: saved without its history.
+  await page.evaluate((q) => { window.__quota = q; window.__attempts = []; }, Math.round(attempts[2] * 1.5));
+  await pull(page, [0, 0, -1], [0, 0, -0.3]);
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  expect(await page.evaluate(() => window.__attempts.length)).toBe(3);
+  const h = await meshHash(page);
+  expect(await page.evaluate(() => window.app.undo())).toBe(true);     // the page still works
+  await page.evaluate(() => window.app.autosave.restore());
+  expect(await meshHash(page)).toBe(h);
+  expect(await page.evaluate(() => window.app.stats().canUndo)).toBe(false);
+  expect(errors.filter((e) => !/Autosave failed/.test(e))).toEqual([]);
 });
 
 test('a file too large for the page is refused with a message before it is read; the mesh stays', async ({ page }) => {
