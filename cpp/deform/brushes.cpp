@@ -34,6 +34,16 @@ Vec3 fan_normal(const SurfaceMesh& mesh, Vertex v) {
   return sum;
 }
 
+// The snake hook's falloff: 1 - 4q^3 + 3q^4 (SculptGL's), flat at the centre. With the
+// brushes' (1 - q^2)^3 the vertices under the pointer moved by less than the pointer each stamp
+// and the hook fell behind it (85 % of a 3-radii pull on a sphere, 77 % on fandisk; 100 % and
+// 104 % with this one; tests/bench/sculptor-compare.mjs).
+double grab_falloff(double distance, double radius) {
+  if (!(distance < radius)) return 0;
+  const double q = distance / radius;
+  return 1 - q * q * q * (4 - 3 * q);
+}
+
 Vec3 normalized_or_zero(const Vec3& v) {
   const double len = glm::length(v);
   return len > 0 ? v / len : Vec3(0.0);
@@ -191,7 +201,7 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
         break;
       }
       case BrushTool::Grab:
-        d = weight_[k] * s.grab_delta;
+        d = grab_falloff(glm::length(p - s.center), st.radius) * s.grab_delta;
         break;
     }
     if (mark_[v.idx] != run_) {

@@ -206,7 +206,16 @@ export function makeGrab(mesh, { view, across, start = 0.25, pull = 3, radius, s
   const step = spacing * radius * (1 + 1e-6);
   const path = [];
   for (let k = 0; k * step <= pull * radius; ++k) path.push(add(hit, scale(u, k * step)));
-  return { kind: 'drag', path, regionLine: path, rays: [], radius, spacing, view: d, centre: bb.centre, diagonal: bb.diagonal };
+  return { kind: 'drag', path, regionLine: path, rays: [], radius, spacing, view: d, across: u, centre: bb.centre, diagonal: bb.diagonal };
+}
+
+// How far the hook got: the farthest vertex along the pull from the picked point, as a share of
+// the pointer's travel (1 = the surface followed the pointer all the way).
+export function grabReach(mesh, grab) {
+  const P = mesh.positions, o = dot(grab.path[0], grab.across);
+  let far = -Infinity;
+  for (let i = 0; i < P.length; i += 3) far = Math.max(far, dot(vert(P, i / 3), grab.across) - o);
+  return far / (dot(grab.path[grab.path.length - 1], grab.across) - o);
 }
 
 // ---------------------------------------------------------------------------------------------

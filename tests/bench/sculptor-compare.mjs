@@ -114,6 +114,9 @@ for (const spec of MESHES) {
     const sm = L.brushedRegionMetrics(S[S.length - 1].mesh, last);
     const om = L.brushedRegionMetrics(O[O.length - 1].mesh, last);
     const stamps = S[0].stamps;
+    if (c.strokes[0].tool === 'grab')
+      notes.push(`${spec.name} grab: the hook reached ${f(100 * L.grabReach(S[S.length - 1].mesh, grab), 0)} % (Sculptor) and ` +
+        `${f(100 * L.grabReach(O[O.length - 1].mesh, grab), 0)} % (adasculpt) of the pointer's 3-radii travel`);
     if (S.some((x) => x.missed)) notes.push(`${spec.name} ${c.label}: Sculptor missed ${S[0].missed} rays`);
     const row = (who, m, runs, extra) =>
       rows.push(
