@@ -79,3 +79,43 @@ TEST(SculptSessionFile, ErrorsNameStepAndField) {
   for (const std::string& e : {bad_json, error_of(R"({"version": 1, "steps": [{"undo": "x"}]})")})
     EXPECT_EQ(e.find('\n'), std::string::npos);
 }
+
+// The brush settings alone (what the wasm brushBegin takes) and inside a brush step.
+TEST(SculptSessionFile, BrushSettingsAloneAndInAStep) {
+  const json settings = {{"tool", "crease"}, {"radius", 0.2}, {"strength", 0.7}, {"symmetry", "y"}, {"invert", true}};
+  const deform::BrushSettings s = sculpt::parse_brush_settings(settings);
+  EXPECT_EQ(s.tool, deform::BrushTool::Crease);
+  EXPECT_DOUBLE_EQ(s.radius, 0.2);
+  EXPECT_DOUBLE_EQ(s.strength, 0.7);
+  EXPECT_EQ(s.symmetry_axis, 1);
+  EXPECT_TRUE(s.invert);
+  EXPECT_DOUBLE_EQ(s.spacing, 0.25);
+
+  auto error = [](const json& j) {
+    try {
+      sculpt::parse_brush_settings(j);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // A stroke's own keys are not settings: only a step (which passes them as stroke_keys) may hold them.
+  json with_path = settings;
+  with_path["path"] = json::array({json::array({0, 0, 1})});
+  EXPECT_EQ(error(with_path), "brush: unknown field 'path'");
+  EXPECT_EQ(sculpt::parse_brush_settings(with_path, "brush: ", {"path"}).tool, deform::BrushTool::Crease);
+  EXPECT_EQ(error({{"radius", 0.1}}), "brush: 'tool' is missing");
+  EXPECT_EQ(error({{"tool", "hammer"}, {"radius", 0.1}}),
+            "brush: 'tool' must be one of draw, inflate, smooth, flatten, pinch, crease, grab");
+  EXPECT_EQ(error({{"tool", "draw"}, {"radius", 0.1}, {"symmetry", "w"}}), "brush: 'symmetry' must be one of x, y, z, none");
+
+  json step = settings;
+  step["path"] = json::array({json::array({0, 0, 1}), json::array({0, 0.1, 1})});
+  const sculpt::SessionFile f = sculpt::parse_session_file(json{{"version", 1}, {"steps", json::array({{{"brush", step}}})}});
+  ASSERT_EQ(f.steps.size(), 1u);
+  EXPECT_EQ(f.steps[0].brush.settings.tool, deform::BrushTool::Crease);
+  EXPECT_EQ(f.steps[0].brush.path.size(), 2u);
+  json no_path = settings;
+  EXPECT_EQ(error_of(json{{"version", 1}, {"steps", json::array({{{"brush", no_path}}})}}.dump()),
+            "step 1 (brush): 'path' is missing");
+}
