@@ -3,6 +3,11 @@
 // that runs out of memory anyway keeps the current mesh), and export → load is lossless.
 // IndexedDB is fresh for every test (Playwright gives each test a new browser context).
 import { test, expect } from '@playwright/test';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = path.join(path.dirname(fileURLToPath(import.meta.url)), '..');
 
 function watchErrors(page) {
   const errors = [];
@@ -257,4 +262,42 @@ test('export is lossless: PLY and OBJ exports load back to bit-identical positio
   for (const fmt of ['ply', 'obj', 'off']) {
     expect(same[fmt], fmt).toEqual({ positions: true, triangles: true, vertices: same.ply.vertices });
   }
+});
+
+// Figures, not checks (ADASCULPT_BENCH=1): autosave write and restore times on a large mesh
+// (ADASCULPT_BENCH_MESH, default ../shared/meshes/dragon.off) with a few undo steps.
+test('bench: autosave write and restore on a large mesh', async ({ page }) => {
+  const mesh = process.env.ADASCULPT_BENCH_MESH || path.join(root, '..', 'shared', 'meshes', 'dragon.off');
+  test.skip(!process.env.ADASCULPT_BENCH, 'set ADASCULPT_BENCH=1');
+  test.skip(!fs.existsSync(mesh), `no ${mesh}`);
+  test.setTimeout(180_000);
+  await page.goto('/');
+  await ready(page);
+  await page.locator('input.adasculpt-file').setInputFiles(mesh);
+  await page.waitForFunction(() => window.app.stats().vertices > 10_000, null, { timeout: 60_000 });
+  const r = await page.evaluate(async () => {
+    const app = window.app;
+    const b = app.bounds();
+    const c = b.min.map((x, i) => (x + b.max[i]) / 2);
+    const d = Math.hypot(...b.max.map((x, i) => x - b.min[i]));
+    const out = { faces: app.stats().faces, writes: [] };
+    for (let k = 0; k < 4; k++) {
+      app.grab.begin({ center: [c[0], b.max[1], c[2]], handleRadius: 0.02 * d, roiRadius: 0.08 * d });
+      for (let i = 1; i <= 4; i++) app.grab.drag({ translate: [0, 0.005 * d * i, 0] });
+      app.grab.end();
+      const t = performance.now();
+      await app.autosave.flush();
+      out.writes.push(Math.round(performance.now() - t));
+    }
+    out.mb = ((await app.autosave.saved()).bytes / 2 ** 20).toFixed(1);
+    const t = performance.now();
+    await app.autosave.restore();
+    out.restoreMs = Math.round(performance.now() - t);
+    const u = performance.now();
+    app.undo();
+    out.firstUndoMs = Math.round(performance.now() - u);
+    return out;
+  });
+  console.log(`autosave on ${path.basename(mesh)} (${r.faces} triangles): writes ${r.writes.join(', ')} ms ` +
+    `(state ${r.mb} MB with 4 undo steps), restore ${r.restoreMs} ms, first undo after it ${r.firstUndoMs} ms`);
 });
