@@ -18,7 +18,8 @@ export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '
 // ---------------------------------------------------------------------------------------------
 // adasculpt (the wasm module in public/wasm, or ADASCULPT_WASM_DIR)
 
-export async function loadAdasculpt(wasmDir = process.env.ADASCULPT_WASM_DIR || path.join(ROOT, 'public', 'wasm')) {
+export async function loadAdasculpt(dir = process.env.ADASCULPT_WASM_DIR || path.join(ROOT, 'public', 'wasm')) {
+  const wasmDir = path.resolve(dir);  // require() takes a relative path as a package name
   const js = path.join(wasmDir, 'adasculpt.js');
   const wasm = path.join(wasmDir, 'adasculpt.wasm');
   if (!fs.existsSync(js) || !fs.existsSync(wasm)) return null;
