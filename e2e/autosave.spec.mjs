@@ -131,6 +131,32 @@ test('Discard deletes the autosave; nothing is offered on the next visit', async
   expect(errors).toEqual([]);
 });
 
+test('embedded apps do not autosave unless given a key; the element takes one by its attribute', async ({ page }) => {
+  await page.goto('/embed.html');
+  await page.waitForFunction(() => document.documentElement.dataset.ready === 'true', null, { timeout: 30_000 });
+  expect(await page.evaluate(() => [window.embedded.left.autosave.enabled, window.embedded.right.autosave.enabled]))
+    .toEqual([false, false]);
+  await page.goto('/element.html');
+  await page.waitForFunction(() => document.documentElement.dataset.ready === 'true', null, { timeout: 30_000 });
+  expect(await page.evaluate(() => document.getElementById('viewer').app.autosave.enabled)).toBe(false);
+  // autosave="sketch": the app restarts with autosave under that key; a change is saved there.
+  const saved = await page.evaluate(async () => {
+    const el = document.getElementById('viewer');
+    const ready = new Promise((r) => el.addEventListener('adasculpt-ready', r, { once: true }));
+    el.setAttribute('autosave', 'sketch');
+    await ready;
+    const app = el.app;
+    app.grab.begin({ center: [0, 0, 1], handleRadius: 0.05, roiRadius: 0.3 });
+    app.grab.drag({ translate: [0, 0, 0.05] });
+    app.grab.end();
+    await app.autosave.flush();
+    return { key: app.autosave.key, saved: await app.autosave.saved() };
+  });
+  expect(saved.key).toBe('sketch');
+  expect(saved.saved.name).toBe('fandisk.off');
+  expect(saved.saved.key).toBe('sketch');
+});
+
 test('a full storage quota: less history, then none, then a message; the page keeps working', async ({ page }) => {
   // IndexedDB refuses records larger than window.__quota bytes with a QuotaExceededError.
   await page.addInitScript(() => {
