@@ -64,6 +64,7 @@ export async function createSculptApp(container, options = {}) {
     session, toaster, root: opts.ui ? root : null,
     busy: () => !!remeshing || tool.active || session.grabbing() || (!!session.brushing && session.brushing()),
     sourceName: () => sourceName,
+    counts: () => ({ vertices: quality.vertices ?? 0, faces: quality.faces ?? 0 }),
     restored: (record) => {
       sourceName = record.name;
       sync();

@@ -40,7 +40,8 @@ function isQuotaError(e) {
   return !!e && (e.name === 'QuotaExceededError' || /quota/i.test(String(e.message)));
 }
 
-// host: {session, busy(), sourceName(), restored(record), toaster, root (for the prompt; null = no prompt)}
+// host: {session, busy(), sourceName(), counts() -> {vertices, faces}, restored(record), toaster,
+//        root (for the prompt; null = no prompt)}
 export function createAutosave(key, host) {
   let dbPromise = null;
   let timer = 0;
@@ -70,19 +71,20 @@ export function createAutosave(key, host) {
     if (disposed || !dirty || offer || !host.session.hasMesh()) return false;
     if (host.busy()) { schedule(); return false; }
     dirty = false;
-    const stats = JSON.parse(host.session.stats());
+    const counts = host.counts(); // the app's cached figures (stats() would measure the whole mesh)
     const settings = host.session.settings();
     const attempt = async (budget) => {
       const state = host.session.saveState(budget);
       const record = {
         version: 1, key, name: host.sourceName(), savedAt: Date.now(),
-        vertices: stats.vertices, faces: stats.faces, settings, bytes: state.byteLength, state: state.buffer,
+        vertices: counts.vertices, faces: counts.faces, settings, bytes: state.byteLength, state: state.buffer,
       };
       await run(await db(), 'readwrite', (s) => s.put(record, key));
       return record;
     };
     writing = (async () => {
       for (const budget of [HISTORY_BYTES, HISTORY_BYTES / 8, 0]) {
+        if (budget !== HISTORY_BYTES && host.busy()) { dirty = true; schedule(); return false; } // a drag began
         try {
           await attempt(budget);
           lastError = null;
@@ -93,6 +95,7 @@ export function createAutosave(key, host) {
         }
       }
       const e = lastError;
+      dirty = true; // a later flush (or the next change) tries again
       host.toaster.show(isQuotaError(e)
         ? 'Autosave failed: the browser\'s storage is full. Export the mesh to keep it.'
         : `Autosave failed: ${e.message}`, 'error');
