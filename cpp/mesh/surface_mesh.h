@@ -101,6 +101,20 @@ class SurfaceMesh {
   std::vector<Point>& positions() { return points_.vector(); }
   const std::vector<Point>& positions() const { return points_.vector(); }
 
+  // ---- flat views for hot loops: raw arrays indexed by handle index, valid until an element is
+  // added (split, add_vertex, new_edge, new_face); collapse, flip and deletion keep them valid.
+  struct HalfedgeConnectivity {
+    Vertex to;
+    Halfedge next, prev;
+    Face face;
+  };
+  const HalfedgeConnectivity* halfedge_connectivity_data() const { return hconn_.vector().data(); }
+  const Halfedge* vertex_halfedge_data() const { return vconn_.vector().data(); }
+  const Halfedge* face_halfedge_data() const { return fconn_.vector().data(); }
+  const std::uint8_t* vertex_deleted_data() const { return vdeleted_.vector().data(); }
+  const std::uint8_t* edge_deleted_data() const { return edeleted_.vector().data(); }
+  const std::uint8_t* face_deleted_data() const { return fdeleted_.vector().data(); }
+
   // ---- topological edits (triangle meshes). Geometric checks are the caller's business.
   // Inserts a vertex at p on edge e and splits the one or two incident triangles.
   // Returns the new vertex; its outgoing halfedge(v) runs along the old edge towards the
@@ -301,11 +315,6 @@ class SurfaceMesh {
   FaceHalfedgeRange halfedges(Face f) const { return {this, halfedge(f)}; }
 
  private:
-  struct HalfedgeConnectivity {
-    Vertex to;
-    Halfedge next, prev;
-    Face face;
-  };
   void bind_builtin_properties();
   void remove_loop_after_collapse(Halfedge keep, Halfedge remove);
   void fix_outgoing_halfedge(Vertex v);

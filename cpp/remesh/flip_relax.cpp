@@ -12,8 +12,7 @@
 namespace adasculpt::remesh {
 
 namespace {
-int target_valence(const SurfaceMesh& m, Vertex v) { return m.is_boundary(v) ? 4 : 6; }
-int sq(int x) { return x * x; }
+using mesh::Index;
 }  // namespace
 
 // A flip must not fold the surface: both new triangles keep the orientation of the quad and
@@ -58,31 +57,59 @@ bool Remesher::Impl::flip_topology_ok(Edge e) const {
 }
 
 // Uses scope_edges as collapse_short_edges left them (collapses delete edges but create none).
+// The loops read the mesh's flat arrays (flips add no elements, so the pointers stay valid): on
+// a converged mesh almost every edge is rejected by the valence test, which must stay cheap.
 size_t Remesher::Impl::flip_edges() {
   valence.resize(mesh.vertices_size());
-  for (Vertex v : scope_vertices)
-    if (!mesh.is_deleted(v)) valence[v.idx] = static_cast<int>(mesh.valence(v));
+  valence_excess.resize(mesh.vertices_size());
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Halfedge* vh = mesh.vertex_halfedge_data();
+  const std::uint8_t* vdel = mesh.vertex_deleted_data();
+  const std::uint8_t* edel = mesh.edge_deleted_data();
+  const std::uint8_t* feat = feature.vector().data();
+  const std::uint8_t* sc = scope.vector().data();
+  int* val = valence.data();
+  int* excess = valence_excess.data();
+  for (Vertex v : scope_vertices) {
+    if (vdel[v.idx]) continue;
+    // SurfaceMesh::valence, and its excess over the target: 4 on the boundary, 6 inside (flips
+    // keep every vertex's boundary status).
+    const Halfedge start = vh[v.idx];
+    int n = 0;
+    if (start.is_valid()) {
+      Halfedge h = start;
+      do {
+        ++n;
+        h = hc[h.idx ^ 1u].next;
+      } while (h != start);
+    }
+    val[v.idx] = n;
+    excess[v.idx] = n - (!start.is_valid() || !hc[start.idx].face.is_valid() ? 4 : 6);
+  }
   size_t flips = 0;
   for (Edge e : scope_edges) {
-    if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
-    Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
-    Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
-    Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
+    if (edel[e.idx] || feat[e.idx]) continue;
+    const auto& ch = hc[e.idx << 1];
+    const auto& co = hc[(e.idx << 1) | 1u];
+    if (!ch.face.is_valid() || !co.face.is_valid()) continue;  // boundary edge
+    const Index a = co.to.idx, b = ch.to.idx, c = hc[ch.next.idx].to.idx, d = hc[co.next.idx].to.idx;
     // All four corners must be in the iteration's scope; held border vertices may gain or
     // lose an edge, outside vertices may not.
-    if (scope[c] == kOutside || scope[d] == kOutside) continue;
-    int va = valence[a.idx], vb = valence[b.idx], vc = valence[c.idx], vd = valence[d.idx];
-    int ta = target_valence(mesh, a), tb = target_valence(mesh, b), tc = target_valence(mesh, c),
-        td = target_valence(mesh, d);
-    int before = sq(va - ta) + sq(vb - tb) + sq(vc - tc) + sq(vd - td);
-    int after = sq(va - 1 - ta) + sq(vb - 1 - tb) + sq(vc + 1 - tc) + sq(vd + 1 - td);
-    if (after >= before) continue;
+    if (sc[c] == kOutside || sc[d] == kOutside) continue;
+    // The flip lowers the sum of squared excesses, sum (x_i - t_i)^2 over the four corners, when
+    // a and b lose an edge and c and d gain one: the difference after - before is
+    // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
+    if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
-    --valence[a.idx];
-    --valence[b.idx];
-    ++valence[c.idx];
-    ++valence[d.idx];
+    --val[a];
+    --val[b];
+    ++val[c];
+    ++val[d];
+    --excess[a];
+    --excess[b];
+    ++excess[c];
+    ++excess[d];
     ++flips;
   }
   return flips;
@@ -96,31 +123,42 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   // Each face's smallest-angle measure once, not once per edge: most edges of a good mesh
   // are rejected by these two lookups alone.
   face_quality.resize(mesh.faces_size());
-  auto quality_of = [&](mesh::Face f) {
-    Vertex c[3];
-    mesh.face_vertices(f, c);
-    return min_angle_sin2(mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]));
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Halfedge* fh = mesh.face_halfedge_data();
+  const std::uint8_t* edel = mesh.edge_deleted_data();
+  const std::uint8_t* feat = feature.vector().data();
+  const std::uint8_t* sc = scope.vector().data();
+  const Point* pos = mesh.positions().data();
+  double* fq = face_quality.data();
+  auto quality_of = [&](Index f) {
+    const Halfedge h0 = fh[f], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
+    return min_angle_sin2(pos[hc[h0.idx].to.idx], pos[hc[h1.idx].to.idx], pos[hc[h2.idx].to.idx]);
   };
   if (whole_mesh) {
-    for (mesh::Face f : mesh.faces()) face_quality[f.idx] = quality_of(f);
+    const std::uint8_t* fdel = mesh.face_deleted_data();
+    const Index n_faces = static_cast<Index>(mesh.faces_size());
+    for (Index f = 0; f < n_faces; ++f)
+      if (!fdel[f]) fq[f] = quality_of(f);
   } else {
     for (Edge e : scope_edges)
-      for (unsigned i = 0; i < 2 && !mesh.is_deleted(e); ++i) {
-        mesh::Face f = mesh.face(mesh.halfedge(e, i));
-        if (f.is_valid()) face_quality[f.idx] = quality_of(f);
+      for (unsigned i = 0; i < 2 && !edel[e.idx]; ++i) {
+        mesh::Face f = hc[(e.idx << 1) | i].face;
+        if (f.is_valid()) fq[f.idx] = quality_of(f.idx);
       }
   }
+  int* val = valence.data();
   size_t flips = 0;
   for (Edge e : scope_edges) {
-    if (mesh.is_deleted(e) || is_feature(e) || mesh.is_boundary(e)) continue;
-    Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
-    mesh::Face f1 = mesh.face(h), f2 = mesh.face(o);
-    double before = std::min(face_quality[f1.idx], face_quality[f2.idx]);
+    if (edel[e.idx] || feat[e.idx]) continue;
+    const auto& ch = hc[e.idx << 1];
+    const auto& co = hc[(e.idx << 1) | 1u];
+    const mesh::Face f1 = ch.face, f2 = co.face;
+    if (!f1.is_valid() || !f2.is_valid()) continue;  // boundary edge
+    double before = std::min(fq[f1.idx], fq[f2.idx]);
     if (before >= poor_sin2) continue;
-    Vertex va = mesh.to_vertex(o), vb = mesh.to_vertex(h);
-    Vertex vc = mesh.to_vertex(mesh.next(h)), vd = mesh.to_vertex(mesh.next(o));
-    if (scope[vc] == kOutside || scope[vd] == kOutside) continue;
-    const Point &a = mesh.position(va), &b = mesh.position(vb), &c = mesh.position(vc), &d = mesh.position(vd);
+    const Index va = co.to.idx, vb = ch.to.idx, vc = hc[ch.next.idx].to.idx, vd = hc[co.next.idx].to.idx;
+    if (sc[vc] == kOutside || sc[vd] == kOutside) continue;
+    const Point &a = pos[va], &b = pos[vb], &c = pos[vc], &d = pos[vd];
     // Delaunay test: the angles gamma, delta opposite the edge sum to more than pi, i.e.
     // sin(gamma + delta) < 0 (both lie in (0, pi)); no trigonometric calls needed.
     Vec3 ca = a - c, cb = b - c, da = a - d, db = b - d;
@@ -130,13 +168,13 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     if (std::min(q1, q2) <= before) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
     mesh.flip(e);
-    --valence[va.idx];
-    --valence[vb.idx];
-    ++valence[vc.idx];
-    ++valence[vd.idx];
+    --val[va];
+    --val[vb];
+    ++val[vc];
+    ++val[vd];
     // flip() keeps the face slots: f1 is now (a, d, c), f2 is (d, b, c).
-    face_quality[f1.idx] = q1;
-    face_quality[f2.idx] = q2;
+    fq[f1.idx] = q1;
+    fq[f2.idx] = q2;
     ++flips;
   }
   return flips;
@@ -144,13 +182,21 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
 
 void Remesher::Impl::relax_vertices() {
   new_positions.resize(scope_vertices.size());
+  // Flat arrays: nothing is added to the mesh until the positions are written back.
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Halfedge* vh = mesh.vertex_halfedge_data();
+  const std::uint8_t* vdel = mesh.vertex_deleted_data();
+  const std::uint8_t* sc = scope.vector().data();
+  const std::uint8_t* vcl = vclass.vector().data();
+  const double* siz = sizing.vector().data();
+  const Point* pos = mesh.positions().data();
   for (size_t i = 0; i < scope_vertices.size(); ++i) {
     Vertex v = scope_vertices[i];
-    if (mesh.is_deleted(v)) continue;
-    const Point p = mesh.position(v);
+    if (vdel[v.idx]) continue;
+    const Point p = pos[v.idx];
     new_positions[i] = p;
-    if (!movable(v)) continue;
-    if (vclass[v] == kFeatureLine) {
+    if (sc[v.idx] != kActive || vcl[v.idx] == kCorner) continue;  // !movable(v)
+    if (vcl[v.idx] == kFeatureLine) {
       // Along the feature line: the two feature edges' midpoints weighted by length x sizing.
       Vertex ends[2];
       int n = 0;
@@ -173,18 +219,26 @@ void Remesher::Impl::relax_vertices() {
     Vec3 normal(0.0);
     Point c(0.0);
     double weight = 0;
-    for (Halfedge h : mesh.halfedges(v)) {
-      if (mesh.is_boundary(h)) continue;
-      Vertex w1 = mesh.to_vertex(h), w2 = mesh.to_vertex(mesh.next(h));
-      const Point& p1 = mesh.position(w1);
-      const Point& p2 = mesh.position(w2);
-      Vec3 n = glm::cross(p1 - p, p2 - p);
-      double area = 0.5 * glm::length(n);
-      double size = (sizing[v] + sizing[w1] + sizing[w2]) / 3.0;
-      double w = area * size;
-      normal += n;
-      c += w * (p + p1 + p2) / 3.0;
-      weight += w;
+    const double size_v = siz[v.idx];
+    const Halfedge start = vh[v.idx];
+    if (start.is_valid()) {
+      Halfedge h = start;
+      do {
+        const auto& ch = hc[h.idx];
+        if (ch.face.is_valid()) {
+          const Index w1 = ch.to.idx, w2 = hc[ch.next.idx].to.idx;
+          const Point& p1 = pos[w1];
+          const Point& p2 = pos[w2];
+          Vec3 n = glm::cross(p1 - p, p2 - p);
+          double area = 0.5 * glm::length(n);
+          double size = (size_v + siz[w1] + siz[w2]) / 3.0;
+          double w = area * size;
+          normal += n;
+          c += w * (p + p1 + p2) / 3.0;
+          weight += w;
+        }
+        h = hc[h.idx ^ 1u].next;
+      } while (h != start);
     }
     double nl = glm::length(normal);
     if (weight <= 0 || nl <= 0) continue;
@@ -192,9 +246,10 @@ void Remesher::Impl::relax_vertices() {
     Vec3 u = c / weight - p;
     new_positions[i] = p + (u - normal * glm::dot(normal, u));
   }
+  Point* out = mesh.positions().data();
   for (size_t i = 0; i < scope_vertices.size(); ++i) {
-    Vertex v = scope_vertices[i];
-    if (!mesh.is_deleted(v) && movable(v)) mesh.position(v) = new_positions[i];
+    const Index v = scope_vertices[i].idx;
+    if (!vdel[v] && sc[v] == kActive && vcl[v] != kCorner) out[v] = new_positions[i];  // movable(v)
   }
 }
 
@@ -214,7 +269,8 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
     size_t fixed_this_pass = 0;
     faces_scratch.clear();
     if (whole_mesh) {
-      for (mesh::Face f : mesh.faces()) faces_scratch.push_back(f);
+      // Every face slot in order, below: collapses and flips add no faces, and the deleted
+      // check at each visit skips what the snapshot of live faces would have skipped.
     } else {
       // Each face once: from its first active corner in halfedge order.
       for (Vertex v : scope_vertices) {
@@ -229,12 +285,20 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         }
       }
     }
-    for (mesh::Face f : faces_scratch) {
-      if (mesh.is_deleted(f)) continue;
-      Halfedge hs[3] = {mesh.halfedge(f), mesh.next(mesh.halfedge(f)), mesh.prev(mesh.halfedge(f))};
-      Point p[3];
-      for (int i = 0; i < 3; ++i) p[i] = mesh.position(mesh.to_vertex(hs[i]));
-      if (min_angle_sin2(p[0], p[1], p[2]) >= sin2_limit) continue;
+    // Flat arrays: collapses and flips add no elements, so the pointers stay valid.
+    const auto* hc = mesh.halfedge_connectivity_data();
+    const Halfedge* fh = mesh.face_halfedge_data();
+    const std::uint8_t* fdel = mesh.face_deleted_data();
+    const Point* pos = mesh.positions().data();
+    const size_t n_visits = whole_mesh ? mesh.faces_size() : faces_scratch.size();
+    for (size_t k = 0; k < n_visits; ++k) {
+      const mesh::Face f = whole_mesh ? mesh::Face(static_cast<Index>(k)) : faces_scratch[k];
+      if (fdel[f.idx]) continue;
+      const Halfedge h0 = fh[f.idx];
+      Halfedge hs[3] = {h0, hc[h0.idx].next, hc[h0.idx].prev};
+      const Point &q0 = pos[hc[hs[0].idx].to.idx], &q1 = pos[hc[hs[1].idx].to.idx], &q2 = pos[hc[hs[2].idx].to.idx];
+      if (min_angle_sin2(q0, q1, q2) >= sin2_limit) continue;
+      const Point p[3] = {q0, q1, q2};
       // Edge lengths: hs[i] runs from p[(i+2)%3] to p[i].
       double len[3];
       for (int i = 0; i < 3; ++i) len[i] = glm::length(p[i] - p[(i + 2) % 3]);

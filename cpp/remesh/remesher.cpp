@@ -100,15 +100,27 @@ IterationStats Remesher::iterate() {
     m.whole_mesh = false;
   }
   m.scope_vertices.clear();
-  for (Vertex v : m.mesh.vertices()) {
-    m.scope[v] = kActive;
-    m.scope_vertices.push_back(v);
+  {
+    const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
+    std::uint8_t* scope = m.scope.vector().data();
+    const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
+    for (mesh::Index i = 0; i < n; ++i)
+      if (!deleted[i]) {
+        scope[i] = kActive;
+        m.scope_vertices.push_back(Vertex(i));
+      }
   }
   m.whole_mesh = true;
   m.region_calls_since_sizing = 0;
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.whole_mesh = false;
-  for (Vertex v : m.mesh.vertices()) m.scope[v] = kOutside;
+  {
+    const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
+    std::uint8_t* scope = m.scope.vector().data();
+    const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
+    for (mesh::Index i = 0; i < n; ++i)
+      if (!deleted[i]) scope[i] = kOutside;
+  }
   return stats;
 }
 

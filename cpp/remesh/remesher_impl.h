@@ -87,6 +87,7 @@ struct Remesher::Impl {
   std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
   std::vector<std::pair<double, Edge>> candidates;
   std::vector<int> valence;
+  std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
   std::vector<Point> new_positions;
   std::vector<double> kappa;
   std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
