@@ -2,6 +2,7 @@
 // shared meshes, feature and boundary preservation, region restriction and determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -229,6 +230,100 @@ TEST(Remesh, RegionIterationLeavesTheRestUntouched) {
       ASSERT_FALSE(m.is_deleted(v));
       EXPECT_EQ(m.position(v), before.position(v));
     }
+}
+
+namespace {
+// Smallest angle of a triangle, degrees.
+double min_angle_deg(const SurfaceMesh& m, mesh::Face f) {
+  Vertex c[3];
+  m.face_vertices(f, c);
+  double best = 180;
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 u = m.position(c[(i + 1) % 3]) - m.position(c[i]), v = m.position(c[(i + 2) % 3]) - m.position(c[i]);
+    best = std::min(best, std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI);
+  }
+  return best;
+}
+
+struct RegionAngles {
+  double pct_under_30_in = 0, min_in = 180;    // faces with all corners in the region
+  double pct_under_30_rim = 0, min_rim = 180;  // faces with corners in and outside it
+  size_t cap_vertices = 0;                     // vertices above z = 0.6 afterwards
+};
+
+// Region calls with a uniform target on the cap z > 0.5 of an icosphere, the region list carried
+// from call to call as a sculpting frame does.
+RegionAngles region_remesh_angles(SurfaceMesh& m, double target, int calls) {
+  remesh::RemeshOptions o = remesh::default_options_for(m);
+  o.min_length = o.max_length = target;
+  remesh::Remesher r(m, o);
+  std::vector<Vertex> region;
+  for (Vertex v : m.vertices())
+    if (m.position(v).z > 0.5) region.push_back(v);
+  for (int i = 0; i < calls; ++i) r.iterate_region(region);
+  m.validate();
+  std::vector<char> in(m.vertices_size(), 0);
+  for (Vertex v : region) in[v.idx] = 1;
+  RegionAngles a;
+  size_t n_in = 0, under_in = 0, n_rim = 0, under_rim = 0;
+  for (mesh::Face f : m.faces()) {
+    Vertex c[3];
+    m.face_vertices(f, c);
+    const int k = in[c[0].idx] + in[c[1].idx] + in[c[2].idx];
+    if (k == 0) continue;
+    const double angle = min_angle_deg(m, f);
+    if (k == 3) {
+      ++n_in;
+      under_in += angle < 30;
+      a.min_in = std::min(a.min_in, angle);
+    } else {
+      ++n_rim;
+      under_rim += angle < 30;
+      a.min_rim = std::min(a.min_rim, angle);
+    }
+  }
+  a.pct_under_30_in = n_in ? 100.0 * under_in / n_in : 0;
+  a.pct_under_30_rim = n_rim ? 100.0 * under_rim / n_rim : 0;
+  for (Vertex v : m.vertices()) a.cap_vertices += m.position(v).z > 0.6;
+  return a;
+}
+
+size_t count_cap_vertices(const SurfaceMesh& m) {
+  size_t n = 0;
+  for (Vertex v : m.vertices()) n += m.position(v).z > 0.6;
+  return n;
+}
+}  // namespace
+
+// A region coarser than the mesh around it (a brush coarsening a fine scan) grades up from that
+// mesh (its held border keeps its own edge length) instead of meeting it in a ring of slivers.
+// Before: 9.9 % of the region's triangles under 30 degrees, down to 16 degrees.
+TEST(Remesh, RegionCoarserThanItsSurroundingGradesFromIt) {
+  SurfaceMesh m = mesh::make_icosphere(5, 1.0);
+  const double edge = geometry::quality_report(m).edge_length_mean;
+  const size_t cap_before = count_cap_vertices(m);
+  const RegionAngles a = region_remesh_angles(m, 2.8 * edge, 12);
+  EXPECT_LT(a.cap_vertices, cap_before / 2) << "the region was coarsened";
+  EXPECT_LT(a.pct_under_30_in, 1.0);
+  EXPECT_GT(a.min_in, 20.0);
+  EXPECT_LT(a.pct_under_30_rim, 1.0);
+}
+
+// A region finer than the mesh around it (a refining brush) leaves the triangles just outside it
+// whole: its border edges are not split. Two calls, as a brush stamp's region gets; before: 34 %
+// of the triangles across the border under 30 degrees (65 % after 12 calls). Known limit: a
+// region held in place for many calls ends with slivers against its long border edges, which
+// fix_bad_faces flips across the border (12 calls: 21 % of the border triangles under 30).
+TEST(Remesh, RegionFinerThanItsSurroundingLeavesTheRimWhole) {
+  SurfaceMesh m = mesh::make_icosphere(4, 1.0);
+  const double edge = geometry::quality_report(m).edge_length_mean;
+  const size_t cap_before = count_cap_vertices(m);
+  const RegionAngles a = region_remesh_angles(m, edge / 2.5, 2);
+  EXPECT_GT(a.cap_vertices, cap_before * 3) << "the region was refined";
+  EXPECT_LT(a.pct_under_30_rim, 1.0);
+  EXPECT_GT(a.min_rim, 45.0);  // the icosphere's own triangles
+  EXPECT_LT(a.pct_under_30_in, 10.0);
+  EXPECT_GT(a.min_in, 15.0);
 }
 
 TEST(Remesh, DegenerateInputTrianglesAreRemoved) {

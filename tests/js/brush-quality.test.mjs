@@ -52,15 +52,11 @@ for (const spec of MESHES) {
 }
 
 // The same strokes where the brush must COARSEN the surface 2.5x (a hemisphere first remeshed
-// finely; three.js's Sculptor meets the bunny at that ratio with its default detail). Known miss:
-// the triangles under 30° sit in the outer third of the brush, where the remeshed region meets the
-// untouched fine mesh: Remesher::iterate_region gives the whole region the uniform target (no
-// grading from the held border's own edge length) and splits the border's held-held edges, whose
-// outer triangles no pass improves. A fix belongs in cpp/remesh (issue #7 notes: held border
-// edges not split + held vertices keeping their own edge length as sizing, graded by the 0.2
-// gradient limit, brought this case to 0.1 % under 30° in a native experiment).
-const COARSEN_TODO = 'iterate_region needs sizing graded from the region border (cpp/remesh)';
-test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip, todo: COARSEN_TODO }, async (t) => {
+// finely; three.js's Sculptor meets the bunny at that ratio with its default detail). The region
+// grades up from the fine mesh around it (Remesher::iterate_region: its held border keeps its own
+// edge length, graded by the 0.2 gradient limit, and the border's edges are not split); before,
+// 7-13 % of the triangles there were under 30°, all in the outer third of the brush.
+test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip }, async (t) => {
   const mesh0 = L.readMesh(M, MESHES[1].file);
   const radius = 0.07 * L.boundingBox(mesh0.positions).diagonal;
   const length = 0.2 * radius;
@@ -79,7 +75,7 @@ test('brushed region quality when the brush coarsens 2.5x (hemisphere)', { skip,
   const grab = L.makeGrab(mesh, { view, across, start: 0.25, pull: 3, radius });
   const before = L.brushedRegionMetrics(mesh, stroke);
   for (const tool of ['draw', 'smooth', 'grab']) {
-    await t.test(tool, { todo: COARSEN_TODO }, () => {
+    await t.test(tool, () => {
       const st = tool === 'grab' ? grab : stroke;
       const m = L.brushedRegionMetrics(L.runOurs(M, mesh, [{ tool, stroke: st }], { length }).mesh, st);
       const what = `coarsening ${tool}: ${JSON.stringify(m)}`;
