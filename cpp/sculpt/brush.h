@@ -5,16 +5,13 @@
 // vertices plus a ring, the same interleaving as a grab frame (PAPER.md section 4).
 //
 // Nothing global happens per stamp: the stamp's vertex is found by walking from the previous
-// stamp's vertex (only the first stamp of a stroke asks the surface's AABB tree), and the mesh is
+// stamp's vertex (only the first stamp of a stroke scans the surface's faces), and the mesh is
 // not garbage-collected until the stroke ends (the Session does that).
 #include <vector>
 
 #include "deform/brushes.h"
 #include "mesh/surface_mesh.h"
 
-namespace adasculpt::geometry {
-class TriangleTree;
-}
 namespace adasculpt::remesh {
 class Remesher;
 }
@@ -41,10 +38,8 @@ class BrushStroker {
   void begin(const deform::BrushSettings& settings);
   // One pointer sample. The first sample of a stroke stamps at once (grab: only picks up the
   // surface there); later ones stamp every spacing * radius along the segment from the previous
-  // sample, with the pressure interpolated. `tree` (of the current surface) is only read while
-  // no stamp has run yet; pass nullptr afterwards. Appends to `frame`.
-  void sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const geometry::TriangleTree* tree,
-              const Point& p, double pressure, BrushFrame& frame);
+  // sample, with the pressure interpolated. Appends to `frame`.
+  void sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& p, double pressure, BrushFrame& frame);
   bool started() const { return started_; }
   const deform::BrushSettings& settings() const { return settings_; }
   deform::BrushDeformer& deformer() { return deformer_; }

@@ -316,12 +316,9 @@ void Session::brush_stamp(const Point& p, double pressure) {
   Impl& s = *impl_;
   if (!s.brushing) throw std::logic_error("brush_stamp: no stroke in progress (call brush_begin first)");
   const auto t0 = Clock::now();
-  // Only the first sample of a stroke needs the tree; it is still valid then unless picking was
-  // never done, in which case it is built once for the stroke (as grab_begin does).
-  const geometry::TriangleTree* tree = s.brush.started() ? nullptr : &s.surface_tree();
   BrushFrame frame;
   frame.touched.swap(s.changes.touched_vertices);  // appends without copying
-  s.brush.sample(s.mesh, *s.remesher, tree, p, pressure, frame);
+  s.brush.sample(s.mesh, *s.remesher, p, pressure, frame);
   frame.touched.swap(s.changes.touched_vertices);
   if (frame.topology_changed) s.changes.topology_changed = true;
   if (frame.stamps > 0) s.tree_valid = false;
@@ -501,7 +498,7 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
   const std::vector<uint8_t> current = pack_mesh(s.mesh);
   std::vector<uint8_t> out;
   out.reserve(64 + current.size() + used);
-  out.insert(out.end(), kStateMagic, kStateMagic + 8);
+  for (char c : kStateMagic) out.push_back(uint8_t(c));  // (vector::insert of the char range trips a g++ 12 false -Wstringop-overflow)
   put(out, kStateVersion);
   for (double x : {s.options.epsilon, s.options.min_length, s.options.max_length, s.options.feature_angle_deg,
                    s.diagonal})
