@@ -220,7 +220,12 @@ class SessionHandle {
         throw std::invalid_argument("brushStamp: expected x, y, z, pressure for each of at least one sample");
       sculpt::FrameTimings sum;
       for (size_t i = 0; i < s.size(); i += 4) {
-        session_.brush_stamp(Point(s[i], s[i + 1], s[i + 2]), s[i + 3]);
+        try {
+          session_.brush_stamp(Point(s[i], s[i + 1], s[i + 2]), s[i + 3]);
+        } catch (...) {
+          sync(false);  // the stamps before the error changed the mesh: keep the page in step
+          throw;
+        }
         const sculpt::FrameTimings& t = session_.last_frame();
         sum.roi_ms += t.roi_ms;
         sum.deform_ms += t.deform_ms;

@@ -65,10 +65,16 @@ Vec3 mirrored(Vec3 v, int axis) {
 }
 }  // namespace
 
+size_t stroke_face_budget(size_t faces_at_start) {
+  const size_t grown = std::max(kStrokeGrowthFactor * faces_at_start, kStrokeFaceFloor);
+  return std::min(grown, std::max(faces_at_start, kStrokeFaceCeiling));
+}
+
 void BrushStroker::begin(const deform::BrushSettings& settings) {
   deform::check_brush_settings(settings);
   settings_ = settings;
   started_ = false;
+  limit_reached_ = false;
   travelled_ = 0;
   seed_ = mirror_seed_ = mesh::Vertex();
   last_region_.clear();
@@ -97,7 +103,9 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     throw std::invalid_argument("brush: the point must be finite");
   pressure = std::clamp(std::isfinite(pressure) ? pressure : 1.0, 0.0, 1.0);
+  if (limit_reached_) return;
   if (!started_) {
+    face_budget_ = stroke_face_budget(mesh.n_faces());
     const auto t0 = Clock::now();
     Point c0;
     seed_ = locate(mesh, p, &c0);
@@ -127,6 +135,10 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
   } else {
     double last = 0;
     for (; s <= len; s += step) {
+      if (mesh.n_faces() > face_budget_) {
+        limit_reached_ = frame.limit_reached = true;
+        return;
+      }
       const double t = s / len;
       stamp(mesh, remesher, last_sample_ + t * seg, last_pressure_ + t * (pressure - last_pressure_), frame);
       last = s;

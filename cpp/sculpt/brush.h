@@ -30,8 +30,22 @@ struct BrushFrame {
   int stamps = 0;
   double locate_ms = 0, deform_ms = 0, remesh_ms = 0;
   bool topology_changed = false;
+  bool limit_reached = false;  // this sample found the stroke's face budget spent (see kStrokeFaceBudget...)
   std::vector<mesh::Vertex> touched;  // brushed vertices + ring after remeshing, appended per stamp
 };
+
+// How much one stroke may grow the mesh. A stroke whose displacement per stamp is many edge lengths
+// (a large inflate on a finely remeshed surface) can crumple the surface faster than relaxation
+// irons it out; the adaptive sizing then refines every fold and each stamp doubles its region, so
+// without a bound one stroke went from 37k to 3 million vertices and never finished. Past the
+// budget the stroke stops stamping (the mesh stays valid and the stroke is one undo step); the
+// Session reports it once. Budget: 4x the faces at the stroke's start, at least 250k faces, and
+// no more than 3M faces (the browser's 2 GB heap holds about 3.6M with history) unless the mesh
+// already has more, in which case it may not grow.
+constexpr size_t kStrokeGrowthFactor = 4;
+constexpr size_t kStrokeFaceFloor = 250000;
+constexpr size_t kStrokeFaceCeiling = 3000000;
+size_t stroke_face_budget(size_t faces_at_start);
 
 class BrushStroker {
  public:
@@ -41,6 +55,8 @@ class BrushStroker {
   // sample, with the pressure interpolated. Appends to `frame`.
   void sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& p, double pressure, BrushFrame& frame);
   bool started() const { return started_; }
+  bool limit_reached() const { return limit_reached_; }
+  size_t face_budget() const { return face_budget_; }
   const deform::BrushSettings& settings() const { return settings_; }
   deform::BrushDeformer& deformer() { return deformer_; }
 
@@ -56,6 +72,8 @@ class BrushStroker {
   deform::BrushSettings settings_;
   deform::BrushDeformer deformer_;
   bool started_ = false;
+  bool limit_reached_ = false;
+  size_t face_budget_ = 0;
   Point last_sample_{0.0};
   double last_pressure_ = 1;
   double travelled_ = 0;  // path length since the last stamp

@@ -329,6 +329,12 @@ void Session::brush_stamp(const Point& p, double pressure) {
   f.remesh_ms = frame.remesh_ms;
   f.total_ms = ms_since(t0);
   f.stamps = frame.stamps;
+  if (frame.limit_reached) {  // reported once; the stroke's later samples are ignored
+    throw std::runtime_error("brush: stroke stopped at " + std::to_string(s.mesh.n_faces()) + " faces, past the " +
+                             std::to_string(s.brush.face_budget()) +
+                             " one stroke may grow this mesh to; undo it, or raise epsilon or the minimum edge "
+                             "length for less detail");
+  }
 }
 
 void Session::brush_end() { impl_->end_grab(); }
@@ -339,8 +345,13 @@ void Session::brush_stroke(const BrushStroke& stroke) {
   if (!stroke.pressure.empty() && stroke.pressure.size() != stroke.path.size())
     throw std::invalid_argument("brush: 'pressure' must have one value per path point");
   brush_begin(stroke.settings);
-  for (size_t i = 0; i < stroke.path.size(); ++i)
-    brush_stamp(stroke.path[i], stroke.pressure.empty() ? 1.0 : stroke.pressure[i]);
+  try {
+    for (size_t i = 0; i < stroke.path.size(); ++i)
+      brush_stamp(stroke.path[i], stroke.pressure.empty() ? 1.0 : stroke.pressure[i]);
+  } catch (...) {
+    brush_end();  // what was stamped stays, as one undo step
+    throw;
+  }
   brush_end();
 }
 
