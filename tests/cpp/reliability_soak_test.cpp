@@ -166,6 +166,14 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
   // The replayable log, and the model of the history: fingerprints of the mesh before each step.
   json log = {{"version", 1}, {"settings", fandisk ? json{{"features", 45}} : json::object()}, {"steps", json::array()}};
   std::deque<uint64_t> undo_model, redo_model;
+  // Appends one step to the log in its session-file form (sculpt/session_file.h).
+  auto log_step = [&](sculpt::SessionStep::Kind kind, auto set) {
+    sculpt::SessionFile one;
+    one.steps.emplace_back();
+    one.steps.back().kind = kind;
+    set(one.steps.back());
+    log["steps"].push_back(sculpt::to_json(one)["steps"][0]);
+  };
   auto dump_log = [&]() {
     const char* tmp = std::getenv("TMPDIR");
     const fs::path p = fs::path(tmp && *tmp ? tmp : "/tmp") / ("adasculpt_soak_" + label + ".json");
@@ -200,11 +208,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         }
         if (mode == 2 || mode == 3) g.scale = uni(0.7, 1.4);
         g.substeps = 1 + pick(6);
-        sculpt::SessionFile one;
-        one.steps.emplace_back();
-        one.steps.back().kind = sculpt::SessionStep::Kind::Grab;
-        one.steps.back().grab = g;
-        log["steps"].push_back(sculpt::to_json(one)["steps"][0]);
+        log_step(sculpt::SessionStep::Kind::Grab, [&](sculpt::SessionStep& st) { st.grab = g; });
         const uint64_t before = fingerprint(s.mesh());
         s.grab_begin(g.center, g.handle_radius, g.roi_radius);
         for (int i = 1; i <= g.substeps; ++i) {
@@ -285,11 +289,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
             pr = std::clamp(pr + uni(-0.3, 0.3), 0.0, 1.0);
           }
         }
-        sculpt::SessionFile one;
-        one.steps.emplace_back();
-        one.steps.back().kind = sculpt::SessionStep::Kind::Brush;
-        one.steps.back().brush = b;
-        log["steps"].push_back(sculpt::to_json(one)["steps"][0]);
+        log_step(sculpt::SessionStep::Kind::Brush, [&](sculpt::SessionStep& st) { st.brush = b; });
         const uint64_t before = fingerprint(s.mesh());
         s.brush_begin(bs);
         for (size_t i = 0; i < b.path.size(); ++i) {

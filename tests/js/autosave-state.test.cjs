@@ -3,20 +3,12 @@
 // undo/redo history, a damaged state is refused with the mesh kept, and the history budget holds.
 const test = require('node:test');
 const assert = require('node:assert');
-const fs = require('node:fs');
-const path = require('node:path');
 
-const root = path.join(__dirname, '..', '..');
-const wasmDir = process.env.ADASCULPT_WASM_DIR || path.join(root, 'public', 'wasm');
-const haveWasm = fs.existsSync(path.join(wasmDir, 'adasculpt.wasm'));
-const skip = !haveWasm && `no wasm module in ${wasmDir} (scripts/build.sh wasm)`;
-const sphereObj = fs.readFileSync(path.join(root, 'public', 'models', 'sphere.obj'));
+const { skip, sphereObj, loadModule } = require('./wasm-module.cjs');
 
 let M;
 test.before(async () => {
-  if (!haveWasm) return;
-  const create = require(path.join(wasmDir, 'adasculpt.js'));
-  M = await create({ wasmBinary: fs.readFileSync(path.join(wasmDir, 'adasculpt.wasm')) });
+  M = await loadModule();
 });
 
 const ply = (s) => Buffer.from(s.exportMesh('ply'));

@@ -8,11 +8,7 @@ const os = require('node:os');
 const path = require('node:path');
 const { execFileSync } = require('node:child_process');
 
-const root = path.join(__dirname, '..', '..');
-const wasmDir = process.env.ADASCULPT_WASM_DIR || path.join(root, 'public', 'wasm');
-const haveWasm = fs.existsSync(path.join(wasmDir, 'adasculpt.wasm'));
-const skip = !haveWasm && `no wasm module in ${wasmDir} (scripts/build.sh wasm)`;
-const sphereObj = fs.readFileSync(path.join(root, 'public', 'models', 'sphere.obj'));
+const { root, skip, sphereObj, loadModule } = require('./wasm-module.cjs');
 const fandiskPath = path.join(root, 'public', 'models', 'fandisk.off');
 
 // A short pull on the top of the unit sphere, then one whole-mesh iteration.
@@ -27,9 +23,7 @@ const PULL = {
 
 let M;
 test.before(async () => {
-  if (!haveWasm) return;
-  const create = require(path.join(wasmDir, 'adasculpt.js'));
-  M = await create({ wasmBinary: fs.readFileSync(path.join(wasmDir, 'adasculpt.wasm')) });
+  M = await loadModule();
 });
 
 function withSession(fn) {
