@@ -20,6 +20,8 @@ constexpr double kDisplace = 0.1;
 // Fraction of the way to the stroke centre a pinch moves a vertex per stamp at full strength.
 // Kept well below 1 so that vertices near the centre do not pile up on it in one stamp.
 constexpr double kPinch = 0.25;
+// Bound on the inflate brush's normal smoothing passes (BrushDeformer::smooth_normals).
+constexpr int kMaxNormalPasses = 24;
 
 const char* const kNames[] = {"draw", "inflate", "smooth", "flatten", "pinch", "crease", "grab"};
 
@@ -115,6 +117,7 @@ void BrushDeformer::grow(size_t n) {
   if (mark_.size() >= n) return;
   mark_.resize(n, 0);
   in_stamp_.resize(n, 0);
+  slot_.resize(n, 0);
   sum_.resize(n, Vec3(0.0));
   count_.resize(n, 0);
 }
@@ -144,6 +147,41 @@ void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double r
   for (Vertex v : inside_) weight_.push_back(brush_falloff(glm::length(mesh.position(v) - s.center), radius));
 }
 
+void BrushDeformer::smooth_normals(const SurfaceMesh& mesh, double displacement) {
+  // Each vertex moving along its own normal by many edge lengths turns every small wrinkle into a
+  // fold (neighbours with different normals move apart), the adaptive sizing refines the folds and
+  // the next stamp crumples them further: large inflate strokes grew a mesh from 37k to 3M
+  // vertices. Moving along a normal field smoothed over about the displacement keeps neighbours
+  // moving together. Jacobi averaging over one ring per pass diffuses over about sqrt(passes)
+  // rings, so (displacement / mean edge length)^2 passes, bounded.
+  const size_t n = inside_.size();
+  smooth_normal_.resize(n);
+  next_normal_.resize(n);
+  double edge_sum = 0;
+  size_t edges = 0;
+  for (size_t k = 0; k < n; ++k) {
+    slot_[inside_[k].idx] = std::uint32_t(k);
+    smooth_normal_[k] = geometry::vertex_normal(mesh, inside_[k]);
+    for (Vertex u : mesh.vertices(inside_[k])) {
+      edge_sum += glm::length(mesh.position(u) - mesh.position(inside_[k]));
+      ++edges;
+    }
+  }
+  const double mean_edge = edges > 0 ? edge_sum / double(edges) : 0;
+  const double ratio = mean_edge > 0 ? displacement / mean_edge : 0;
+  const int passes = int(std::min(double(kMaxNormalPasses), std::ceil(ratio * ratio)));
+  for (int pass = 0; pass < passes; ++pass) {
+    for (size_t k = 0; k < n; ++k) {
+      Vec3 sum = smooth_normal_[k];
+      for (Vertex u : mesh.vertices(inside_[k]))
+        if (in_stamp_[u.idx] == stamp_run_ && slot_[u.idx] < n && inside_[slot_[u.idx]] == u)
+          sum += smooth_normal_[slot_[u.idx]];
+      next_normal_[k] = normalized_or_zero(sum);
+    }
+    smooth_normal_.swap(next_normal_);
+  }
+}
+
 void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, const StampSpec& s) {
   gather(mesh, s, st.radius);
   if (inside_.empty()) return;
@@ -161,6 +199,7 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
   }
   normal = normalized_or_zero(normal);
   centre = wsum > 0 ? centre / wsum : s.center;
+  if (st.tool == BrushTool::Inflate) smooth_normals(mesh, kDisplace * st.radius * amount);
 
   for (size_t k = 0; k < inside_.size(); ++k) {
     const Vertex v = inside_[k];
@@ -172,7 +211,7 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
         d = (sign * kDisplace * st.radius * w) * normal;
         break;
       case BrushTool::Inflate:
-        d = (sign * kDisplace * st.radius * w) * geometry::vertex_normal(mesh, v);
+        d = (sign * kDisplace * st.radius * w) * smooth_normal_[k];
         break;
       case BrushTool::Smooth: {
         if (mesh.is_boundary(v)) break;  // a Laplacian step would shrink the border

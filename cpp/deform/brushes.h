@@ -66,6 +66,8 @@ class BrushDeformer {
  private:
   void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius);
   void displace(const SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec& s);
+  // Inflate: vertex normals of inside_ smoothed over about `displacement` into smooth_normal_.
+  void smooth_normals(const SurfaceMesh& mesh, double displacement);
   bool marked(Vertex v) const { return v.idx < mark_.size() && mark_[v.idx] == run_; }
   void grow(size_t n);
 
@@ -76,6 +78,8 @@ class BrushDeformer {
   std::uint32_t run_ = 0, stamp_run_ = 0;
   std::vector<Vertex> inside_;     // of the current stamp
   std::vector<double> weight_;     // falloff per inside_ entry
+  std::vector<Vec3> smooth_normal_, next_normal_;  // inflate: per inside_ entry
+  std::vector<std::uint32_t> slot_;  // per vertex slot: its index in inside_ (valid while in_stamp_)
   std::vector<Vertex> touched_;    // union over the stamps
   std::vector<Vertex> region_;     // touched_ + ring
   size_t moved_ = 0;

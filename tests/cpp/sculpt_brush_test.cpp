@@ -449,18 +449,19 @@ TEST(SculptBrush, StampCostOnAFinerSphere) {
   s.mesh().validate();
 }
 
-// Regression (soak, eight.off): repeated large inflate strokes on a finely remeshed surface move
-// vertices many edge lengths per stamp along their own normals, crumple the surface and, without a
-// bound, made one stroke refine from ~37k to millions of vertices and never finish. The stroke
-// must stop at its face budget with a message, leave a valid mesh, and undo as one step.
-TEST(SculptBrush, RunawayInflateStopsAtTheStrokeFaceBudget) {
+// Regression (soak, eight.off): repeated large inflate strokes moved vertices many edge lengths
+// per stamp along their own normals, crumpled the surface, and the adaptive sizing refined every
+// fold: one stroke grew the mesh from ~37k to millions of vertices. These 14 strokes reached the
+// stroke face budget (past 250k faces) in the 10th; along smoothed normals all 14 finish, well
+// below it, with the same inflation.
+TEST(SculptBrush, LargeInflateStrokesDoNotCrumpleTheSurface) {
 #if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "about 2 s in Release, minutes under ASan: the Release ctest runs it";
+  GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
 #endif
   sculpt::Session s;
   s.load_file(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/eight.off");
-  bool stopped = false;
-  for (int k = 0; k < 14 && !stopped; ++k) {
+  const double volume_before = volume(s.mesh());
+  for (int k = 0; k < 14; ++k) {
     sculpt::BrushStroke stroke;
     stroke.settings.tool = BrushTool::Inflate;
     stroke.settings.radius = 0.119;  // 10.5 % of the diagonal
@@ -468,21 +469,40 @@ TEST(SculptBrush, RunawayInflateStopsAtTheStrokeFaceBudget) {
     stroke.settings.symmetry_axis = 2;
     for (int t = 0; t < 30; ++t)
       stroke.path.emplace_back(0.3 * std::cos(0.2 * t + k), 0.15 * std::sin(0.2 * t + k), 0.1);
-    const size_t faces_before = s.mesh().n_faces();
-    const size_t budget = sculpt::stroke_face_budget(faces_before);
-    try {
-      s.brush_stroke(stroke);
-      EXPECT_LE(s.mesh().n_faces(), 2 * budget);
-    } catch (const std::runtime_error& e) {
-      stopped = true;
-      EXPECT_EQ(std::string(e.what()).rfind("brush: stroke stopped at ", 0), 0u) << e.what();
-      EXPECT_GT(s.mesh().n_faces(), budget);
-      EXPECT_LE(s.mesh().n_faces(), 2 * budget) << "one stamp at most doubles its region";
-      EXPECT_FALSE(s.brushing()) << "brush_stroke ends the stroke it could not finish";
-      s.mesh().validate();
-      ASSERT_TRUE(s.undo());
-      EXPECT_EQ(s.mesh().n_faces(), faces_before) << "the stopped stroke is one undo step";
-    }
+    ASSERT_NO_THROW(s.brush_stroke(stroke)) << "stroke " << k;
   }
-  EXPECT_TRUE(stopped) << "these strokes used to run away; if they no longer reach the budget, find another case";
+  s.mesh().validate();
+  EXPECT_LT(s.mesh().n_faces(), 150000u) << "a crumpled surface refines without end";
+  EXPECT_GT(volume(s.mesh()), 2 * volume_before) << "the strokes still inflate";
+  const geometry::QualityReport q = geometry::quality_report(s.mesh());
+  EXPECT_GT(q.mean_min_angle_deg, 45.0);
+}
+
+// A stroke that asks for more detail than memory allows (tiny epsilon and edge lengths, a wide
+// brush) must stop at its face budget with a message, leave a valid mesh, and undo as one step.
+TEST(SculptBrush, StrokeStopsAtTheStrokeFaceBudget) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
+#endif
+  sculpt::Session s;
+  s.load_file(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/eight.off");
+  s.set_settings({{"epsilon", "0.001%"}, {"min_length", "0.01%"}, {"max_length", "0.1%"}});
+  const size_t faces_before = s.mesh().n_faces();
+  const size_t budget = sculpt::stroke_face_budget(faces_before);
+  sculpt::BrushStroke stroke;
+  stroke.settings.tool = BrushTool::Draw;
+  stroke.settings.radius = 0.119;
+  for (int t = 0; t < 30; ++t) stroke.path.emplace_back(0.3 * std::cos(0.2 * t), 0.15 * std::sin(0.2 * t), 0.1);
+  try {
+    s.brush_stroke(stroke);
+    ADD_FAILURE() << "the stroke finished at " << s.mesh().n_faces() << " faces; budget " << budget;
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("brush: stroke stopped at ", 0), 0u) << e.what();
+    EXPECT_GT(s.mesh().n_faces(), budget);
+    EXPECT_LE(s.mesh().n_faces(), 2 * budget) << "one stamp at most doubles its region";
+    EXPECT_FALSE(s.brushing()) << "brush_stroke ends the stroke it could not finish";
+    s.mesh().validate();
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(s.mesh().n_faces(), faces_before) << "the stopped stroke is one undo step";
+  }
 }
