@@ -243,26 +243,47 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
         d = grab_falloff(glm::length(p - s.center), st.radius) * s.grab_delta;
         break;
     }
-    if (mark_[v.idx] != run_) {
-      mark_[v.idx] = run_;
-      sum_[v.idx] = Vec3(0.0);
-      count_[v.idx] = 0;
-      touched_.push_back(v);
-    }
-    sum_[v.idx] += d;
-    count_[v.idx] = std::uint8_t(std::min(255, count_[v.idx] + 1));
+    add(v, d);
   }
 }
 
+void BrushDeformer::add(Vertex v, const Vec3& d) {
+  if (mark_[v.idx] != run_) {
+    mark_[v.idx] = run_;
+    sum_[v.idx] = Vec3(0.0);
+    count_[v.idx] = 0;
+    touched_.push_back(v);
+  }
+  sum_[v.idx] += d;
+  count_[v.idx] = std::uint8_t(std::min(255, count_[v.idx] + 1));
+}
+
 std::vector<Vertex>& BrushDeformer::apply(SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec* stamps,
-                                          int n) {
+                                          int n, const std::vector<Vertex>* mirror) {
   grow(mesh.vertices_size());
   if (++run_ == 0) {
     std::fill(mark_.begin(), mark_.end(), 0);
     run_ = 1;
   }
   touched_.clear();
-  for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
+  if (mirror && n == 2 && settings.symmetry_axis >= 0) {
+    // The first stamp's displacements, and each one mirrored onto the vertex's image. A vertex
+    // under both stamps gets d + image(d') and its image d' + image(d): the same two terms, so
+    // the sums are exact mirror images (a vertex on the plane gets an exactly zero normal part).
+    displace(mesh, settings, stamps[0]);
+    // Read every first-stamp displacement before adding any image (a vertex and its image may
+    // both be under the first stamp).
+    const size_t first = touched_.size();
+    inside_.assign(touched_.begin(), touched_.end());  // scratch: displace() is done with them
+    image_displacement_.resize(first);
+    for (size_t k = 0; k < first; ++k) {
+      image_displacement_[k] = sum_[inside_[k].idx];
+      image_displacement_[k][settings.symmetry_axis] = -image_displacement_[k][settings.symmetry_axis];
+    }
+    for (size_t k = 0; k < first; ++k) add((*mirror)[inside_[k].idx], image_displacement_[k]);
+  } else {
+    for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
+  }
   for (Vertex v : touched_) mesh.position(v) += sum_[v.idx] / double(count_[v.idx]);
   moved_ = touched_.size();
   region_ = touched_;

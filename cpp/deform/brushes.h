@@ -59,13 +59,18 @@ class BrushDeformer {
   // of them moves, and a vertex under several stamps moves by their mean (a stamp and its mirror
   // image overlapping at the symmetry plane then stay symmetric and do not add up).
   // Returns the brushed vertices plus one ring around them (for Remesher::iterate_region).
-  std::vector<Vertex>& apply(SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec* stamps, int n);
+  // With `mirror` (the image of each vertex of an exactly symmetric mesh, from the remesher) and
+  // two stamps, only the first is computed and every displacement is also applied, mirrored, to
+  // the vertex's image: the second stamp's result, exact to the last bit.
+  std::vector<Vertex>& apply(SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec* stamps, int n,
+                             const std::vector<Vertex>* mirror = nullptr);
   // Vertices moved by the last apply() (without the ring).
   size_t moved() const { return moved_; }
 
  private:
   void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius);
   void displace(const SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec& s);
+  void add(Vertex v, const Vec3& d);  // one stamp's displacement of v
   // Inflate: vertex normals of inside_ smoothed over about `displacement` into smooth_normal_.
   void smooth_normals(const SurfaceMesh& mesh, double displacement);
   bool marked(Vertex v) const { return v.idx < mark_.size() && mark_[v.idx] == run_; }
@@ -79,6 +84,7 @@ class BrushDeformer {
   std::vector<Vertex> inside_;     // of the current stamp
   std::vector<double> weight_;     // falloff per inside_ entry
   std::vector<Vec3> smooth_normal_, next_normal_;  // inflate: per inside_ entry
+  std::vector<Vec3> image_displacement_;  // apply() with a mirror map: the first stamp's, mirrored
   std::vector<std::uint32_t> slot_;  // per vertex slot: its index in inside_ (valid while in_stamp_)
   std::vector<Vertex> touched_;    // union over the stamps
   std::vector<Vertex> region_;     // touched_ + ring

@@ -86,6 +86,21 @@ size_t Remesher::Impl::flip_edges() {
     val[v.idx] = n;
     excess[v.idx] = n - (!start.is_valid() || !hc[start.idx].face.is_valid() ? 4 : 6);
   }
+  // Flips f and keeps the valences and excesses of its quad's corners up to date.
+  auto flip_counting = [&](Edge f) {
+    const auto& fh = hc[f.idx << 1];
+    const auto& fo = hc[(f.idx << 1) | 1u];
+    const Index a = fo.to.idx, b = fh.to.idx, c = hc[fh.next.idx].to.idx, d = hc[fo.next.idx].to.idx;
+    mesh.flip(f);
+    --val[a];
+    --val[b];
+    ++val[c];
+    ++val[d];
+    --excess[a];
+    --excess[b];
+    ++excess[c];
+    ++excess[d];
+  };
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (edel[e.idx] || feat[e.idx]) continue;
@@ -101,16 +116,14 @@ size_t Remesher::Impl::flip_edges() {
     // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
     if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
-    mesh.flip(e);
-    --val[a];
-    --val[b];
-    ++val[c];
-    ++val[d];
-    --excess[a];
-    --excess[b];
-    ++excess[c];
-    ++excess[d];
-    ++flips;
+    Edge image = e;
+    if (mirror_axis >= 0) {
+      image = flip_partner(e);
+      if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
+    }
+    flip_counting(e);
+    if (image != e) flip_counting(image);
+    flips += image != e ? 2 : 1;
   }
   return flips;
 }
@@ -167,6 +180,11 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
     if (std::min(q1, q2) <= before) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
+    Edge image = e;
+    if (mirror_axis >= 0) {
+      image = flip_partner(e);
+      if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
+    }
     mesh.flip(e);
     --val[va];
     --val[vb];
@@ -176,6 +194,19 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     fq[f1.idx] = q1;
     fq[f2.idx] = q2;
     ++flips;
+    if (image != e) {
+      const auto& ih = hc[image.idx << 1];
+      const auto& io = hc[(image.idx << 1) | 1u];
+      const mesh::Face g1 = ih.face, g2 = io.face;
+      --val[io.to.idx];
+      --val[ih.to.idx];
+      ++val[hc[ih.next.idx].to.idx];
+      ++val[hc[io.next.idx].to.idx];
+      mesh.flip(image);
+      fq[g1.idx] = quality_of(g1.idx);
+      fq[g2.idx] = quality_of(g2.idx);
+      ++flips;
+    }
   }
   return flips;
 }
@@ -251,6 +282,7 @@ void Remesher::Impl::relax_vertices() {
     const Index v = scope_vertices[i].idx;
     if (!vdel[v] && sc[v] == kActive && vcl[v] != kCorner) out[v] = new_positions[i];  // movable(v)
   }
+  if (mirror_axis >= 0) symmetrize_positions();
 }
 
 void Remesher::Impl::project_vertices() {
@@ -312,10 +344,11 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
           if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.5) &&
               collapse_topology_ok(h)) {
-            Halfedge o = mesh.opposite(h);
-            if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
-            if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
-            mesh.collapse(h);
+            if (mirror_axis >= 0) {
+              if (collapse_with_mirror(h, false) == 0) continue;
+            } else {
+              apply_collapse(h, false);
+            }
             done = true;
             break;
           }
@@ -324,8 +357,12 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         Edge e = mesh.edge(hs[longest]);
         if (!is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && mesh.is_flip_ok(e) &&
             flip_geometry_ok(e, false)) {
-          mesh.flip(e);
-          done = true;
+          const Edge image = mirror_axis >= 0 ? flip_partner(e) : e;
+          if (image.is_valid() && (image == e || mesh.is_flip_ok(image))) {
+            mesh.flip(e);
+            if (image != e) mesh.flip(image);
+            done = true;
+          }
         }
       }
       fixed_this_pass += done;

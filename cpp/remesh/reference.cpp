@@ -176,6 +176,7 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
     if (sum > 0) sizing[v] = std::min(sizing[v], sum / n);
   }
   limit_sizing_gradation(mesh, vertices, sizing, kGradation, &kappa_known);
+  if (mirror_axis >= 0) symmetrize_sizing(vertices);
 }
 
 void Remesher::Impl::build_reference() {

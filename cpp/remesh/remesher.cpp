@@ -58,7 +58,7 @@ Remesher::Remesher(SurfaceMesh& mesh, const RemeshOptions& options) : impl_(std:
   impl_->reference_stale = true;
 }
 
-Remesher::~Remesher() = default;
+Remesher::~Remesher() { disable_mirror(); }  // the map is only valid while the remesher keeps it
 
 const RemeshOptions& Remesher::options() const { return impl_->opt; }
 
@@ -128,6 +128,7 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   Impl& m = *impl_;
   // The deformed surface is the reference now; the stored one is out of date.
   m.reference_stale = true;
+  if (m.mirror_axis >= 0) m.close_region_under_mirror(region);
   m.scope_vertices.clear();
   for (Vertex v : region)
     if (!m.mesh.is_deleted(v) && m.scope[v] == kOutside) {

@@ -59,6 +59,19 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
+  // Mirror symmetry for region iterations (brush strokes with symmetry on). When the mesh is
+  // exactly symmetric across the plane where coordinate `axis` is 0 (geometry::find_mirror_map),
+  // iterate_region does every split, collapse, flip and move on both vertices/edges of a mirror
+  // pair at once (the decision taken once, the positions of one side copied mirrored to the
+  // other), so the mesh stays exactly symmetric, vertex for vertex. An operation whose image
+  // overlaps it near the plane, where doing both is not certain to stay valid, is left out.
+  // Returns false, and leaves mirroring off, when the mesh is not exactly symmetric.
+  bool enable_mirror(int axis);
+  void disable_mirror();
+  bool mirror_enabled() const;
+  // While mirroring: the vertex at v's mirror image (vertices the iterations add included),
+  // indexed by vertex index; nullptr when mirroring is off.
+  const std::vector<Vertex>* mirror_map() const;
   // The mesh changed outside the remesher's control (e.g. deformation or a new load):
   // the reference surface is rebuilt from the current mesh on the next whole-mesh iteration.
   void reset_reference();

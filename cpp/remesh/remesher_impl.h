@@ -114,6 +114,35 @@ struct Remesher::Impl {
   void project_vertices();
   size_t fix_bad_faces(double angle_deg);
 
+  // ---- mirror symmetry (mirror.cpp): see Remesher::enable_mirror
+  int mirror_axis = -1;         // >= 0 while mirroring
+  VertexProperty<Vertex> mirror;  // the image of each vertex while mirroring
+  std::vector<Vertex> near_scratch;
+  Point mirrored(Point p) const {
+    p[mirror_axis] = -p[mirror_axis];
+    return p;
+  }
+  // The edge between the images of e's ends (e itself for an edge in or across the plane), or an
+  // invalid handle if the mesh lost its symmetry (then mirroring stops: stop_mirroring()).
+  Edge mirror_edge(Edge e);
+  // Whether the vertices within one ring of a and b include the image of one of them: then an
+  // operation on the edge (a, b) and the same on its image may interfere.
+  bool overlaps_its_image(Vertex a, Vertex b);
+  // For a flip of e (a, b with opposite c, d): the edge to flip with it (e itself when e is its
+  // own image), or an invalid handle when the two quads share a vertex (flip neither).
+  Edge flip_partner(Edge e);
+  void stop_mirroring();
+  void close_region_under_mirror(std::vector<Vertex>& region);
+  void symmetrize_sizing(const std::vector<Vertex>& vertices);
+  void symmetrize_positions();
+  // Collapses h (midpoint: both ends meet in the middle) and its image; returns the number of
+  // collapses done (0 when the pair cannot be done symmetrically).
+  size_t collapse_with_mirror(Halfedge h, bool midpoint);
+  // Splits e at its midpoint and its image at the image of that point unless e is no longer
+  // long (it was split as the image of an earlier edge); returns the number of splits.
+  size_t split_with_mirror(Edge e);
+  size_t split_shared_triangle(Edge e, Edge image);
+
   // ---- helpers
   double target_length(Edge e) const {
     return std::min(sizing[mesh.vertex(e, 0)], sizing[mesh.vertex(e, 1)]);
@@ -129,6 +158,10 @@ struct Remesher::Impl {
   bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true,
                             double min_cos = 0.5) const;
   double collapse_quality(Halfedge h) const;
+  // Picks how to collapse the short edge e (ratio: squared length / squared threshold): the
+  // halfedge and whether both ends meet at the midpoint; false when no collapse is allowed.
+  bool choose_collapse(Edge e, double ratio, Halfedge* h, bool* midpoint) const;
+  void apply_collapse(Halfedge h, bool midpoint);
   bool flip_geometry_ok(Edge e, bool require_flat) const;
   bool flip_topology_ok(Edge e) const;  // needs `valence` current (flip passes)
   Vertex split_edge(Edge e, const Point& p);

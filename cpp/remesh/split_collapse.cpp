@@ -70,6 +70,48 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
   return v;
 }
 
+size_t Remesher::Impl::split_with_mirror(Edge e) {
+  const double limit = kSplitFactor * target_length(e);
+  if (squared_length(mesh, e) <= limit * limit) return 0;  // split already, as an image
+  const Edge image = mirror_edge(e);
+  const Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
+  const size_t first = image.is_valid() && image != e ? split_shared_triangle(e, image) : 0;
+  const Vertex v = split_edge(e, mid);
+  if (mirror_axis < 0) return 1;  // symmetry lost: a plain split
+  if (image == e) {  // in or across the plane: the midpoint is on the plane, exactly
+    mirror[v] = v;
+    return 1;
+  }
+  const Vertex w = split_edge(image, mirrored(mid));
+  mirror[v] = w;
+  mirror[w] = v;
+  return first + 2;
+}
+
+// An edge from the plane to a vertex off it and its image can be two sides of one triangle (its
+// own image: a, a', p with p on the plane). Splitting both would leave a quad (a, a', w, v) whose
+// diagonal can't be symmetric; splitting the triangle's third side, across the plane, first
+// puts the two edges in different triangles. Returns the splits done.
+size_t Remesher::Impl::split_shared_triangle(Edge e, Edge image) {
+  for (unsigned i = 0; i < 2; ++i) {
+    const Halfedge h = mesh.halfedge(e, i);
+    if (mesh.is_boundary(h)) continue;
+    const Halfedge n = mesh.next(h), p = mesh.prev(h);
+    Edge across;
+    if (mesh.edge(n) == image)
+      across = mesh.edge(p);
+    else if (mesh.edge(p) == image)
+      across = mesh.edge(n);
+    else
+      continue;
+    const Point mid = 0.5 * (mesh.position(mesh.vertex(across, 0)) + mesh.position(mesh.vertex(across, 1)));
+    const Vertex u = split_edge(across, mid);  // its own image: the midpoint is on the plane
+    mirror[u] = u;
+    return 1;
+  }
+  return 0;
+}
+
 size_t Remesher::Impl::split_long_edges() {
   size_t splits = 0;
   gather_scope_edges();
@@ -109,6 +151,10 @@ size_t Remesher::Impl::split_long_edges() {
     for (const auto& c : candidates) {
       if (splits >= max_splits) break;
       Edge e = c.second;
+      if (mirror_axis >= 0) {
+        splits += split_with_mirror(e);
+        continue;
+      }
       Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
       split_edge(e, mid);
       ++splits;
@@ -212,6 +258,40 @@ double Remesher::Impl::collapse_quality(Halfedge h) const {
   return worst;
 }
 
+bool Remesher::Impl::choose_collapse(Edge e, double ratio, Halfedge* h_out, bool* midpoint) const {
+  Halfedge h0 = mesh.halfedge(e, 0), h1 = mesh.halfedge(e, 1);
+  bool ok0 = collapse_allowed(h0), ok1 = collapse_allowed(h1);
+  *midpoint = false;
+  *h_out = ok0 ? h0 : h1;
+  if (ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0)) *h_out = h1;
+  if (ok0 || ok1) return true;
+  // Neither end can take the other's place (typically on a thin or strongly curved part):
+  // meeting in the middle often can, and leaves no sliver behind.
+  // Only for edges far below the threshold: elsewhere endpoint collapses grade better.
+  if (ratio > kMidpointCollapseRatio) return false;
+  Vertex a = mesh.from_vertex(h0), b = mesh.to_vertex(h0);
+  if (!movable(a) || !movable(b) || vclass[a] != kFree || vclass[b] != kFree) return false;
+  Point mid = 0.5 * (mesh.position(a) + mesh.position(b));
+  if (!collapse_geometry_ok(h0, mid, true) || !collapse_topology_ok(h0)) return false;
+  *h_out = h0;
+  *midpoint = true;
+  return true;
+}
+
+void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
+  if (midpoint) {
+    Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+    sizing[b] = 0.5 * (sizing[a] + sizing[b]);
+    mesh.position(b) = 0.5 * (mesh.position(a) + mesh.position(b));
+  }
+  // The mesh keeps the edges of prev(h) and next(opposite(h)); carry feature flags over
+  // from the edges that disappear with the two triangles.
+  Halfedge o = mesh.opposite(h);
+  if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
+  if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
+  mesh.collapse(h);
+}
+
 // Gathers the scope's edges once more (the splits added some); the flip passes after it reuse
 // the list, since neither collapses nor flips create edges.
 size_t Remesher::Impl::collapse_short_edges() {
@@ -231,29 +311,14 @@ size_t Remesher::Impl::collapse_short_edges() {
     if (mesh.is_deleted(e)) continue;
     double limit = kCollapseFactor * target_length(e);
     if (squared_length(mesh, e) >= limit * limit) continue;  // neighbours changed it
-    Halfedge h0 = mesh.halfedge(e, 0), h1 = mesh.halfedge(e, 1);
-    bool ok0 = collapse_allowed(h0), ok1 = collapse_allowed(h1);
-    Halfedge h = ok0 ? h0 : h1;
-    if (ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0)) h = h1;
-    if (!ok0 && !ok1) {
-      // Neither end can take the other's place (typically on a thin or strongly curved part):
-      // meeting in the middle often can, and leaves no sliver behind.
-      // Only for edges far below the threshold: elsewhere endpoint collapses grade better.
-      if (c.first > kMidpointCollapseRatio) continue;
-      Vertex a = mesh.from_vertex(h0), b = mesh.to_vertex(h0);
-      if (!movable(a) || !movable(b) || vclass[a] != kFree || vclass[b] != kFree) continue;
-      Point mid = 0.5 * (mesh.position(a) + mesh.position(b));
-      if (!collapse_geometry_ok(h0, mid, true) || !collapse_topology_ok(h0)) continue;
-      h = h0;
-      sizing[b] = 0.5 * (sizing[a] + sizing[b]);
-      mesh.position(b) = mid;
+    Halfedge h;
+    bool midpoint = false;
+    if (!choose_collapse(e, c.first, &h, &midpoint)) continue;
+    if (mirror_axis >= 0) {
+      collapses += collapse_with_mirror(h, midpoint);
+      continue;
     }
-    // The mesh keeps the edges of prev(h) and next(opposite(h)); carry feature flags over
-    // from the edges that disappear with the two triangles.
-    Halfedge o = mesh.opposite(h);
-    if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
-    if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
-    mesh.collapse(h);
+    apply_collapse(h, midpoint);
     ++collapses;
   }
   return collapses;

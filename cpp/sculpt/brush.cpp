@@ -110,8 +110,14 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
     Point c0;
     seed_ = locate(mesh, p, &c0);
     if (symmetric()) {
-      Point unused;
-      mirror_seed_ = locate(mesh, mirror(c0), &unused);
+      // An exactly symmetric mesh stays so, vertex for vertex: the remesher pairs its operations
+      // across the plane and the deformer mirrors the first stamp (see Remesher::enable_mirror).
+      if (remesher.enable_mirror(settings_.symmetry_axis)) {
+        mirror_seed_ = (*remesher.mirror_map())[seed_.idx];
+      } else {
+        Point unused;
+        mirror_seed_ = locate(mesh, mirror(c0), &unused);
+      }
     }
     frame.locate_ms += ms_between(t0, Clock::now());
     started_ = true;
@@ -175,11 +181,12 @@ void BrushStroker::stamp(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, co
     m.center = mirror(s.center);
     m.grab_delta = mirrored(s.grab_delta, settings_.symmetry_axis);
     m.pressure = pressure;
-    mirror_seed_ = reseed(mesh, mirror_seed_, m.center);
+    const std::vector<mesh::Vertex>* image = remesher.mirror_map();
+    mirror_seed_ = image ? (*image)[seed_.idx] : reseed(mesh, mirror_seed_, m.center);
     m.seed = mirror_seed_;
   }
   const auto t1 = Clock::now();
-  std::vector<mesh::Vertex>& region = deformer_.apply(mesh, settings_, specs, n);
+  std::vector<mesh::Vertex>& region = deformer_.apply(mesh, settings_, specs, n, remesher.mirror_map());
   const auto t2 = Clock::now();
   const size_t faces_before = mesh.faces_size();
   const remesh::IterationStats st = remesher.iterate_region(region);
