@@ -18,12 +18,17 @@ bool Remesher::enable_mirror(int axis) {
   m.mirror = m.mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
   m.mirror.vector() = std::move(image);
   m.mirror_axis = axis;
-  // Feature flags, sizes and classes come from dihedral angles and curvature, computed per side:
-  // make the pairs agree (an edge is a feature when either side says so).
+  // Feature flags and sizes come from dihedral angles and curvature, computed per side: make the
+  // pairs agree (an edge is a feature when either side says so). Only feature edges need their
+  // image looked up; the connectivity elsewhere is checked edge by edge as the passes go.
   for (Edge e : m.mesh.edges()) {
+    if (!m.feature[e]) continue;
     const Edge img = m.mirror_edge(e);
-    if (!img.is_valid()) return false;
-    m.feature[img] = m.feature[e] = m.feature[e] | m.feature[img];
+    if (!img.is_valid()) {
+      disable_mirror();
+      return false;
+    }
+    m.feature[img] = 1;
   }
   for (Vertex v : m.mesh.vertices()) {
     const Vertex w = m.mirror[v];

@@ -65,24 +65,37 @@ for (const spec of MESHES) {
   const stroke = L.makeStroke(mesh, { view: spec.view, across: spec.across, span: 0.4, wiggle: 0.05, radius });
   const base = L.brushedRegionMetrics(mesh, stroke);
 
-  // Calibrate our uniform length on the draw stroke: L0 = Sculptor's mean, then one correction.
-  const draw = [{ tool: 'draw', stroke }];
-  const sDraw = L.brushedRegionMetrics(L.runSculptor(mesh, draw, { detail: DETAIL }).mesh, stroke);
-  let length = sDraw.meanEdge;
-  const o0 = L.brushedRegionMetrics(L.runOurs(M, mesh, draw, { length }).mesh, stroke);
-  length *= sDraw.meanEdge / o0.meanEdge;
+  // Equal resolution: our uniform length such that the brushed region's mean edge matches
+  // Sculptor's after the same strokes. L0 = Sculptor's mean, then one correction. Each single-tool
+  // row is calibrated on its own stroke: Sculptor's smooth neither refines nor coarsens the input
+  // (its region keeps the input's edges, 1.6x longer than after its draw on the sphere, 2.5x
+  // shorter on the bunny), so a length calibrated on the draw made us remesh the smooth row to a
+  // different resolution than Sculptor's. Grab and the session row keep the draw's length.
+  const calibrate = (strokes) => {
+    const last = strokes[strokes.length - 1].stroke;
+    const target = L.brushedRegionMetrics(L.runSculptor(mesh, strokes, { detail: DETAIL }).mesh, last).meanEdge;
+    const first = L.brushedRegionMetrics(L.runOurs(M, mesh, strokes, { length: target }).mesh, last).meanEdge;
+    return target * (target / first);
+  };
+  const length = calibrate([{ tool: 'draw', stroke }]);
   notes.push(
     `${spec.name}: ${mesh.positions.length / 3} vertices, ${mesh.indices.length / 3} faces, diagonal ${f(bb.diagonal, 3)}, ` +
       `brush radius ${f(radius, 4)}, ${stroke.path.length} stamps per stroke, mean edge in the region before ${f(base.meanEdge, 4)}; ` +
       `Sculptor detail ${DETAIL} (split > ${f(radius * Math.sqrt(0.2 * (1.1 - DETAIL)), 4)}, collapse < ${f((radius * Math.sqrt(0.2 * (1.1 - DETAIL))) / 2.05, 4)}); ` +
-      `adasculpt min_length = max_length = ${f(length, 4)}`,
+      `adasculpt min_length = max_length = ${f(length, 4)} (calibrated on the draw stroke)`,
   );
 
-  const cases = TOOL_ORDER.map((t) => ({ label: t, strokes: [{ tool: t, stroke }] }));
+  const cases = TOOL_ORDER.map((t) => {
+    const strokes = [{ tool: t, stroke }];
+    return { label: t, strokes, length: t === 'draw' ? length : calibrate(strokes) };
+  });
+  notes.push(`${spec.name}: adasculpt length per single-tool row: ` +
+    cases.map((c) => `${c.label} ${f(c.length, 4)}`).join(', '));
   const grab = L.makeGrab(mesh, { view: spec.view, across: spec.across, start: 0.25, pull: 3, radius });
-  cases.push({ label: 'grab (snake hook, 3 radii)', strokes: [{ tool: 'grab', stroke: grab }] });
-  cases.push({ label: 'all six in turn', strokes: SESSION_ORDER.map((t) => ({ tool: t, stroke })) });
+  cases.push({ label: 'grab (snake hook, 3 radii)', strokes: [{ tool: 'grab', stroke: grab }], length });
+  cases.push({ label: 'all six in turn', strokes: SESSION_ORDER.map((t) => ({ tool: t, stroke })), length });
   for (const c of cases) {
+    const length = c.length;
     // One untimed warm-up run of each (JIT, wasm tier-up), then REPEATS timed runs.
     L.runSculptor(mesh, c.strokes, { detail: DETAIL });
     L.runOurs(M, mesh, c.strokes, { length });
