@@ -12,6 +12,9 @@
 #   ADASCULPT_SOAK_MESHES=a,b    "icosphere", repo-relative paths or names in ../shared/meshes
 #                                (default icosphere,eight.off,hemisphere.off,fandisk.off,rocker_arm.off)
 #   ADASCULPT_SOAK_CHECK_EVERY=N validate + topology period (default 100)
+#   ADASCULPT_SOAK_RESTART_FACES=N  load a mesh afresh after a check once it has grown past N faces
+#                                (default 60000: sculpting keeps refining, and a sanitizer step on 180k
+#                                faces costs about ten times one on 20k)
 #   ADASCULPT_SOAK_SEED=N        random seed (default 1)
 #   ADASCULPT_SOAK_PROGRESS_EVERY=N  a progress line every N steps per mesh (default 500)
 #   ADASCULPT_SOAK_BUILD=DIR     a configured sanitizer build to use (default: $ADASCULPT_BUILD_ROOT/asan,
@@ -35,9 +38,10 @@ fi
 export ADASCULPT_SOAK_STEPS=${ADASCULPT_SOAK_STEPS:-20000}
 export ADASCULPT_SOAK_MESHES=${ADASCULPT_SOAK_MESHES:-icosphere,eight.off,hemisphere.off,fandisk.off,rocker_arm.off}
 export ADASCULPT_SOAK_CHECK_EVERY=${ADASCULPT_SOAK_CHECK_EVERY:-100}
+export ADASCULPT_SOAK_RESTART_FACES=${ADASCULPT_SOAK_RESTART_FACES:-60000}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-echo "soak: $ADASCULPT_SOAK_STEPS steps on $ADASCULPT_SOAK_MESHES (validate every $ADASCULPT_SOAK_CHECK_EVERY), $BIN"
+echo "soak: $ADASCULPT_SOAK_STEPS steps on $ADASCULPT_SOAK_MESHES (validate every $ADASCULPT_SOAK_CHECK_EVERY, fresh load past $ADASCULPT_SOAK_RESTART_FACES faces), $BIN"
 echo "soak: machine $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(uname -sr)"
 start=$EPOCHREALTIME
 "$BIN" --gtest_filter='ReliabilitySoak.*' --gtest_color=no

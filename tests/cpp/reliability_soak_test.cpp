@@ -20,6 +20,10 @@
 //   ADASCULPT_SOAK_SEED=N         random seed (default 1; deterministic for a given seed)
 //   ADASCULPT_SOAK_MAX_RSS_MB=N   peak RSS limit (VmHWM, default 4096)
 //   ADASCULPT_SOAK_PROGRESS_EVERY=N  a progress line every N steps per mesh (default 500)
+//   ADASCULPT_SOAK_RESTART_FACES=N  after a full check, a mesh grown past N faces is loaded afresh
+//                                 (a new history; default 0 = never): sculpting keeps refining, and
+//                                 under sanitizers a step on 180k faces costs 10x one on 20k, so the
+//                                 long run bounds the size to get through its steps
 //   ADASCULPT_SOAK_SECONDS=N      wall-time budget of the whole run, shared out among the meshes in
 //                                 turn: a mesh stops early when its share is spent (validate and the
 //                                 closing checks still run on its last step); lines report steps run
@@ -121,6 +125,7 @@ bool all_finite(const mesh::SurfaceMesh& m) {
 struct Totals {
   long steps = 0, frames = 0, grabs = 0, remeshes = 0, undos = 0, redos = 0;
   long brushes = 0, samples = 0, stamps = 0;  // strokes, pointer samples, stamps run
+  long restarts = 0;  // fresh loads of the input after the mesh grew past ADASCULPT_SOAK_RESTART_FACES
   long stopped = 0;  // strokes stopped by their face budget (sculpt/brush.h): allowed, the mesh must stay valid
   long checks = 0;  // invariant checks passed (finite positions, validate, genus, boundaries, history, undo/redo)
 };
@@ -129,16 +134,19 @@ struct Totals {
 // seconds > 0: stop after the step that exceeds this wall time (the closing checks still run).
 void soak_one(const std::string& name, long steps, long check_every, uint32_t seed, double seconds, Totals& totals) {
   sculpt::Session s;
-  if (name == "icosphere") {
-    s.load(mesh::make_icosphere(3));
-  } else {
-    const std::string path = resolve_mesh(name);
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not found";
-    s.load_file(path);
-  }
+  const std::string path = name == "icosphere" ? name : resolve_mesh(name);
+  if (name != "icosphere" && !fs::exists(path)) GTEST_SKIP() << path << " not found";
   const std::string label = fs::path(name).stem().string();
   const bool fandisk = label == "fandisk";
-  if (fandisk) s.set_settings({{"features", 45}});  // sharp edges kept: the feature code path
+  auto load_input = [&]() {
+    if (name == "icosphere")
+      s.load(mesh::make_icosphere(3));
+    else
+      s.load_file(path);
+    if (fandisk) s.set_settings({{"features", 45}});  // sharp edges kept: the feature code path
+  };
+  load_input();
+  const size_t restart_faces = size_t(env_long("ADASCULPT_SOAK_RESTART_FACES", 0));
   const int genus0 = geometry::genus(s.mesh()), loops0 = geometry::boundary_loops(s.mesh());
   const double diag = s.settings()["diagonal"].get<double>();
   const double min_len = s.settings()["min_length"].get<double>();
@@ -389,6 +397,13 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         return;
       }
       totals.checks += 4;
+      if (restart_faces > 0 && faces > restart_faces) {
+        load_input();
+        undo_model.clear();
+        redo_model.clear();
+        log["steps"] = json::array();  // a failure replays from the fresh load
+        ++totals.restarts;
+      }
     }
     if (step % progress_every == 0) {  // progress of long runs
       std::printf("[soak]   %s: step %ld/%ld, %zu vertices, %zu faces, %.0f s, VmRSS %ld MB, VmHWM %ld MB, "
@@ -449,11 +464,11 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
     if (HasFailure()) return;
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - m0).count();
     std::printf("[soak] %-28s steps %6ld grabs %6ld (frames %7ld) brushes %6ld (samples %7ld, stamps %8ld) "
-                "remeshes %5ld undos %5ld redos %5ld  %.1f s  VmHWM %ld MB\n",
+                "remeshes %5ld undos %5ld redos %5ld fresh loads %3ld  %.1f s  VmHWM %ld MB\n",
                 meshes[i].c_str(), totals.steps - before.steps, totals.grabs - before.grabs,
                 totals.frames - before.frames, totals.brushes - before.brushes, totals.samples - before.samples,
                 totals.stamps - before.stamps, totals.remeshes - before.remeshes, totals.undos - before.undos,
-                totals.redos - before.redos, sec, proc_status_kb("VmHWM") / 1024);
+                totals.redos - before.redos, totals.restarts - before.restarts, sec, proc_status_kb("VmHWM") / 1024);
     std::fflush(stdout);
     if (totals.steps > before.steps) done.push_back(fs::path(meshes[i]).filename().string());
   }
@@ -462,10 +477,11 @@ TEST(ReliabilitySoak, RandomSculptingKeepsInvariants) {
   std::string names;
   for (const auto& d : done) names += (names.empty() ? "" : ",") + d;
   std::printf("[soak] total: %ld steps on %zu meshes (%s): %ld grabs (%ld frames), %ld brush strokes (%ld samples, "
-              "%ld stamps, %ld stopped by their face budget), %ld remeshes, %ld undos, %ld redos; %.1f s, peak RSS "
-              "(VmHWM) %ld MB, %ld invariant checks passed, seed %u\n",
+              "%ld stamps, %ld stopped by their face budget), %ld remeshes, %ld undos, %ld redos, %ld fresh loads; %.1f s, "
+              "peak RSS (VmHWM) %ld MB, %ld invariant checks passed, seed %u\n",
               totals.steps, done.size(), names.c_str(), totals.grabs, totals.frames, totals.brushes, totals.samples,
-              totals.stamps, totals.stopped, totals.remeshes, totals.undos, totals.redos, sec, hwm_mb, totals.checks, seed);
+              totals.stamps, totals.stopped, totals.remeshes, totals.undos, totals.redos, totals.restarts, sec, hwm_mb,
+              totals.checks, seed);
   if (hwm_mb > 0) {
     EXPECT_LE(hwm_mb, max_rss_mb) << "peak RSS";
   }
