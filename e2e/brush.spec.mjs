@@ -28,6 +28,11 @@ const shape = (page) => page.evaluate(async () => {
     if (d > 1.02) r[x > 0 ? 'raisedRight' : 'raisedLeft']++;
     if (d < 0.98) r[x > 0 ? 'dentedRight' : 'dentedLeft']++;
   }
+  // Exact mirror symmetry across x = 0: vertices whose mirror image is not exactly a vertex (the
+  // export is lossless, so the text holds the doubles exactly).
+  const key = (x, y, z) => `${x === 0 ? 0 : x},${y},${z}`;
+  const at = new Set(p.map(([x, y, z]) => key(x, y, z)));
+  r.mirrorMissing = p.filter(([x, y, z]) => !at.has(key(-x, y, z))).length;
   for (let i = 2 + nv; i < lines.length; i++) {
     const [, a, b, c] = lines[i].trim().split(/\s+/).map(Number);
     const [A, B, C] = [p[a], p[b], p[c]];
@@ -140,7 +145,7 @@ test('inflate (key 3) by mouse: more vertices, larger volume; Ctrl+Z restores th
   expect(errors).toEqual([]);
 });
 
-test('draw (key 2) raises the surface on both sides of x = 0 (symmetry X by default); Ctrl held digs in', async ({ page }) => {
+test('draw (key 2) raises the surface on both sides of x = 0, exactly mirrored (symmetry X by default); Ctrl held digs in', async ({ page }) => {
   await open(page);
   await page.keyboard.press('2');
   // Right of the centre, not crossing x = 0: only the mirror stroke can touch the left side.
@@ -151,6 +156,7 @@ test('draw (key 2) raises the surface on both sides of x = 0 (symmetry X by defa
   expect(drawn.raisedRight).toBeGreaterThan(5);
   expect(drawn.raisedLeft).toBeGreaterThan(5);
   expect(drawn.dentedRight + drawn.dentedLeft).toBe(0);
+  expect(drawn.mirrorMissing).toBe(0);  // the sphere is symmetric: the result is, vertex for vertex
   await shot(page, 'drawn-symmetric');
   // Symmetry off in the panel: a second stroke lower down changes the right side only.
   await page.locator('.lil-controller', { hasText: 'symmetry' }).locator('select').selectOption('off');
@@ -159,6 +165,7 @@ test('draw (key 2) raises the surface on both sides of x = 0 (symmetry X by defa
   const oneSide = await shape(page);
   expect(oneSide.raisedRight).toBeGreaterThan(5);
   expect(oneSide.raisedLeft).toBe(0);
+  expect(oneSide.mirrorMissing).toBeGreaterThan(0);
   // Inverted (Ctrl held while stroking): the surface goes in.
   await page.keyboard.press('Control+z');
   await stroke(page, { fx: 0.45, fy: 0.35, dy: -0.7, modifier: 'Control' });
