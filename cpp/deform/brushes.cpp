@@ -188,17 +188,20 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
   const double sign = st.invert ? -1.0 : 1.0;
   const double amount = st.strength * s.pressure;
 
-  // Region plane: normal and centre weighted by area and falloff (draw, flatten, pinch, crease).
+  // Region plane: normal and centre weighted by area and falloff (draw, flatten, pinch, crease;
+  // smooth, inflate and grab do not use it, and it is a third of a smooth stamp's deformation).
   Vec3 normal(0.0);
   Point centre(0.0);
-  double wsum = 0;
-  for (size_t k = 0; k < inside_.size(); ++k) {
-    normal += weight_[k] * fan_normal(mesh, inside_[k]);
-    centre += weight_[k] * mesh.position(inside_[k]);
-    wsum += weight_[k];
+  if (st.tool != BrushTool::Smooth && st.tool != BrushTool::Inflate && st.tool != BrushTool::Grab) {
+    double wsum = 0;
+    for (size_t k = 0; k < inside_.size(); ++k) {
+      normal += weight_[k] * fan_normal(mesh, inside_[k]);
+      centre += weight_[k] * mesh.position(inside_[k]);
+      wsum += weight_[k];
+    }
+    normal = normalized_or_zero(normal);
+    centre = wsum > 0 ? centre / wsum : s.center;
   }
-  normal = normalized_or_zero(normal);
-  centre = wsum > 0 ? centre / wsum : s.center;
   if (st.tool == BrushTool::Inflate) smooth_normals(mesh, kDisplace * st.radius * amount);
 
   for (size_t k = 0; k < inside_.size(); ++k) {

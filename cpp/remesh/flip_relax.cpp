@@ -153,10 +153,20 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     for (Index f = 0; f < n_faces; ++f)
       if (!fdel[f]) fq[f] = quality_of(f);
   } else {
+    // Each face once, though up to three of its edges are in scope.
+    face_seen.resize(mesh.faces_size(), 0);
+    if (++face_run == 0) {
+      std::fill(face_seen.begin(), face_seen.end(), 0);
+      face_run = 1;
+    }
+    std::uint32_t* seen = face_seen.data();
     for (Edge e : scope_edges)
       for (unsigned i = 0; i < 2 && !edel[e.idx]; ++i) {
         mesh::Face f = hc[(e.idx << 1) | i].face;
-        if (f.is_valid()) fq[f.idx] = quality_of(f.idx);
+        if (f.is_valid() && seen[f.idx] != face_run) {
+          seen[f.idx] = face_run;
+          fq[f.idx] = quality_of(f.idx);
+        }
       }
   }
   int* val = valence.data();

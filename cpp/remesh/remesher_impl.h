@@ -85,6 +85,8 @@ struct Remesher::Impl {
   std::vector<Edge> scope_edges;
   std::vector<mesh::Face> faces_scratch;
   std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
+  std::vector<std::uint32_t> face_seen;  // per face slot: == face_run when face_quality is current
+  std::uint32_t face_run = 0;
   std::vector<std::pair<double, Edge>> candidates;
   std::vector<int> valence;
   std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
