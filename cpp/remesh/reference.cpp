@@ -14,10 +14,6 @@
 namespace adasculpt::remesh {
 
 namespace {
-// Largest growth of the target edge length per unit distance (see limit_sizing_gradation).
-// 0.2 measured best on the shared meshes: 0.4 leaves 22-24 degree minimum angles and 0.25 a mean
-// min angle just under 50 on face.off; 0.15 adds triangles for no further gain.
-constexpr double kGradation = 0.2;
 // Turning angle (radians) above which a feature-line vertex counts as a kink, not a curve.
 constexpr double kMaxCurveTurn = M_PI / 6;
 // Closest reference points farther than this many target lengths from a free vertex are
@@ -207,6 +203,8 @@ void Remesher::Impl::build_reference() {
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
   tree.build(std::move(points), std::move(triangles));
   has_reference = !tree.empty();
+  ref_near_neck.assign(tree.points().size(), 0);
+  necks.clear();
   // Incidence of the tree's triangles (it drops degenerate ones and reorders).
   const auto& tris = tree.triangles();
   ref_fan_offset.assign(tree.points().size() + 1, 0);
@@ -312,14 +310,12 @@ geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Po
 double Remesher::Impl::reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const {
   geometry::TriangleTree::ClosestHit hit = closest_on_reference(p, *hint_triangle);
   *hint_triangle = hit.triangle;
-  const auto& t = tree.triangles()[hit.triangle];
-  return hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
+  return sizing_of_hit(hit);
 }
 
 void Remesher::Impl::project(Vertex v) {
   geometry::TriangleTree::ClosestHit hit = closest_on_reference(mesh.position(v), ref_hint[v]);
   ref_hint[v] = hit.triangle;
-  const auto& t = tree.triangles()[hit.triangle];
   // Feature vertices go onto the nearest reference feature line instead: the nearest surface
   // point of a vertex beside a sharp edge lies on one of its faces, off the edge.
   if (vclass[v] != kFree) {
@@ -348,7 +344,7 @@ void Remesher::Impl::project(Vertex v) {
     }
   }
   if (vclass[v] == kFree || !opt.adaptive)
-    sizing[v] = hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
+    sizing[v] = sizing_of_hit(hit);
 }
 
 namespace {

@@ -313,7 +313,12 @@ size_t Remesher::Impl::collapse_short_edges() {
     if (squared_length(mesh, e) >= limit * limit) continue;  // neighbours changed it
     Halfedge h;
     bool midpoint = false;
-    if (!choose_collapse(e, c.first, &h, &midpoint)) continue;
+    if (!choose_collapse(e, c.first, &h, &midpoint)) {
+      // A short edge on the loop around a neck narrower than the sizing cannot collapse (link
+      // condition): the sizing there is lowered to what the neck needs (neck.cpp).
+      refine_neck_at(e);
+      continue;
+    }
     if (mirror_axis >= 0) {
       collapses += collapse_with_mirror(h, midpoint);
       continue;
