@@ -127,11 +127,21 @@ double Remesher::Impl::reference_cross_section(const Point& centre, const Vec3& 
     const Point q = geometry::closest_point_on_triangle(centre, pts[tris[t][0]], pts[tris[t][1]], pts[tris[t][2]], bary);
     return glm::length(q - centre);
   };
+  // Triangles gathered in this measurement carry its stamp: membership in O(1), so that a fine
+  // reference (thousands of triangles within the radius) costs no quadratic search.
+  neck_stamp.resize(tris.size(), 0);
+  if (++neck_run == 0) {
+    std::fill(neck_stamp.begin(), neck_stamp.end(), 0);
+    neck_run = 1;
+  }
+  auto gathered = [&](std::uint32_t t) { return neck_stamp[t] == neck_run; };
   std::vector<std::uint32_t>& near = neck_triangles;
   near.clear();
   auto gather = [&](std::uint32_t t) {
-    if (t < tris.size() && std::find(near.begin(), near.end(), t) == near.end() && distance(t) <= radius)
+    if (t < tris.size() && !gathered(t) && distance(t) <= radius) {
+      neck_stamp[t] = neck_run;
       near.push_back(t);
+    }
   };
   for (std::uint32_t t : seeds) gather(t);
   for (size_t i = 0; i < near.size() && near.size() < kNeckWalkLimit; ++i)
@@ -168,7 +178,7 @@ double Remesher::Impl::reference_cross_section(const Point& centre, const Vec3& 
     if (n_ends != 2) return open;
     length += glm::length(ends[1] - ends[0]);
     // Leaving the gathered triangles (or the surface) leaves the curve open.
-    if (next == UINT32_MAX || std::find(near.begin(), near.end(), next) == near.end()) return open;
+    if (next == UINT32_MAX || !gathered(next)) return open;
     if (next == start) return length;
     previous = current;
     current = next;

@@ -108,7 +108,9 @@ struct Remesher::Impl {
   std::vector<Point> new_positions;
   std::vector<double> kappa;
   std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
-  std::vector<std::uint32_t> neck_triangles;  // reference_cross_section
+  std::vector<std::uint32_t> neck_triangles;  // reference_cross_section: the triangles gathered
+  std::vector<std::uint32_t> neck_stamp;      // per reference triangle: == neck_run when gathered
+  std::uint32_t neck_run = 0;
 
   // ---- set-up (reference.cpp)
   void build_reference();
