@@ -543,3 +543,32 @@ TEST(SculptBrush, RandomMirroredStrokesStayExactlySymmetric) {
   }
   EXPECT_LT(pct_below_30[0], std::max(1.0, 1.5 * pct_below_30[1])) << "pairing costs little quality";
 }
+
+// The same on an open mesh (boundary edges are feature lines the remesher keeps): the hemisphere
+// is symmetric across x = 0 and y = 0.
+TEST(SculptBrush, MirroredStrokesOnTheHemisphereStayExactlySymmetric) {
+  for (int axis = 0; axis < 2; ++axis) {
+    std::mt19937 rng(31 + axis);
+    std::uniform_real_distribution<double> u(-1, 1);
+    sculpt::Session s;
+    s.load_file(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/hemisphere.off");
+    ASSERT_TRUE(geometry::is_mirror_symmetric(s.mesh(), axis));
+    const BrushTool tools[] = {BrushTool::Draw, BrushTool::Inflate, BrushTool::Smooth, BrushTool::Pinch, BrushTool::Grab};
+    for (int k = 0; k < 15; ++k) {
+      // Over the dome and across the plane, some strokes reaching the rim (z = 0).
+      Point a(u(rng), u(rng), 0.5 + 0.5 * std::abs(u(rng))), b(u(rng), u(rng), 0.2 * std::abs(u(rng)));
+      b[axis] = -0.3 * a[axis];
+      std::vector<Point> path;
+      for (int i = 0; i <= 12; ++i) path.push_back(glm::normalize(a + (b - a) * (i / 12.0)));
+      const BrushTool tool = tools[k % 5];
+      if (tool == BrushTool::Grab) path = {path.front(), path.front() * 1.1, path.front() * 1.2};
+      s.brush_stroke(stroke(tool, path, 0.3, 0.6, axis));
+      s.mesh().validate();
+      ASSERT_TRUE(geometry::is_mirror_symmetric(s.mesh(), axis)) << "axis " << axis << " stroke " << k;
+    }
+    const geometry::QualityReport q = geometry::quality_report(s.mesh());
+    std::printf("hemisphere axis %d: %zu vertices, min angle %.1f, %.2f %% under 30 deg\n", axis, q.vertices,
+                q.min_angle_deg, q.pct_min_angle_lt_30);
+    EXPECT_EQ(q.boundary_loops, 1);
+  }
+}
