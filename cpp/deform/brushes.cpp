@@ -277,13 +277,13 @@ std::vector<Vertex>& BrushDeformer::apply(SurfaceMesh& mesh, const BrushSettings
     // Read every first-stamp displacement before adding any image (a vertex and its image may
     // both be under the first stamp).
     const size_t first = touched_.size();
-    inside_.assign(touched_.begin(), touched_.end());  // scratch: displace() is done with them
     image_displacement_.resize(first);
     for (size_t k = 0; k < first; ++k) {
-      image_displacement_[k] = sum_[inside_[k].idx];
+      image_displacement_[k] = sum_[touched_[k].idx];
       image_displacement_[k][settings.symmetry_axis] = -image_displacement_[k][settings.symmetry_axis];
     }
-    for (size_t k = 0; k < first; ++k) add((*mirror)[inside_[k].idx], image_displacement_[k]);
+    // add() appends to touched_; the first `first` entries stay where they are.
+    for (size_t k = 0; k < first; ++k) add((*mirror)[touched_[k].idx], image_displacement_[k]);
   } else {
     for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
   }

@@ -56,6 +56,19 @@ bool Remesher::Impl::flip_topology_ok(Edge e) const {
   return true;
 }
 
+void Remesher::Impl::flip_counting(Edge e) {
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const auto& h = hc[e.idx << 1];
+  const auto& o = hc[(e.idx << 1) | 1u];
+  const Index corner[4] = {o.to.idx, h.to.idx, hc[h.next.idx].to.idx, hc[o.next.idx].to.idx};  // a, b lose; c, d gain
+  mesh.flip(e);
+  for (int i = 0; i < 4; ++i) {
+    const int change = i < 2 ? -1 : 1;
+    valence[corner[i]] += change;
+    valence_excess[corner[i]] += change;
+  }
+}
+
 // Uses scope_edges as collapse_short_edges left them (collapses delete edges but create none).
 // The loops read the mesh's flat arrays (flips add no elements, so the pointers stay valid): on
 // a converged mesh almost every edge is rejected by the valence test, which must stay cheap.
@@ -86,21 +99,6 @@ size_t Remesher::Impl::flip_edges() {
     val[v.idx] = n;
     excess[v.idx] = n - (!start.is_valid() || !hc[start.idx].face.is_valid() ? 4 : 6);
   }
-  // Flips f and keeps the valences and excesses of its quad's corners up to date.
-  auto flip_counting = [&](Edge f) {
-    const auto& fh = hc[f.idx << 1];
-    const auto& fo = hc[(f.idx << 1) | 1u];
-    const Index a = fo.to.idx, b = fh.to.idx, c = hc[fh.next.idx].to.idx, d = hc[fo.next.idx].to.idx;
-    mesh.flip(f);
-    --val[a];
-    --val[b];
-    ++val[c];
-    ++val[d];
-    --excess[a];
-    --excess[b];
-    ++excess[c];
-    ++excess[d];
-  };
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (edel[e.idx] || feat[e.idx]) continue;
@@ -116,11 +114,8 @@ size_t Remesher::Impl::flip_edges() {
     // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
     if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
-    Edge image = e;
-    if (mirror_axis >= 0) {
-      image = flip_partner(e);
-      if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
-    }
+    const Edge image = flip_partner(e);
+    if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);
     if (image != e) flip_counting(image);
     flips += image != e ? 2 : 1;
@@ -169,7 +164,6 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
         }
       }
   }
-  int* val = valence.data();
   size_t flips = 0;
   for (Edge e : scope_edges) {
     if (edel[e.idx] || feat[e.idx]) continue;
@@ -190,31 +184,19 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
     if (std::min(q1, q2) <= before) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
-    Edge image = e;
-    if (mirror_axis >= 0) {
-      image = flip_partner(e);
-      if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
-    }
-    mesh.flip(e);
-    --val[va];
-    --val[vb];
-    ++val[vc];
-    ++val[vd];
+    const Edge image = flip_partner(e);
+    if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
+    flip_counting(e);
     // flip() keeps the face slots: f1 is now (a, d, c), f2 is (d, b, c).
     fq[f1.idx] = q1;
     fq[f2.idx] = q2;
     ++flips;
     if (image != e) {
-      const auto& ih = hc[image.idx << 1];
-      const auto& io = hc[(image.idx << 1) | 1u];
-      const mesh::Face g1 = ih.face, g2 = io.face;
-      --val[io.to.idx];
-      --val[ih.to.idx];
-      ++val[hc[ih.next.idx].to.idx];
-      ++val[hc[io.next.idx].to.idx];
-      mesh.flip(image);
-      fq[g1.idx] = quality_of(g1.idx);
-      fq[g2.idx] = quality_of(g2.idx);
+      flip_counting(image);
+      for (unsigned i = 0; i < 2; ++i) {
+        const Index g = hc[(image.idx << 1) | i].face.idx;
+        fq[g] = quality_of(g);
+      }
       ++flips;
     }
   }
@@ -354,11 +336,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
           if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.5) &&
               collapse_topology_ok(h)) {
-            if (mirror_axis >= 0) {
-              if (collapse_with_mirror(h, false) == 0) continue;
-            } else {
-              apply_collapse(h, false);
-            }
+            if (collapse_with_mirror(h, false) == 0) continue;
             done = true;
             break;
           }
@@ -367,7 +345,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         Edge e = mesh.edge(hs[longest]);
         if (!is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && mesh.is_flip_ok(e) &&
             flip_geometry_ok(e, false)) {
-          const Edge image = mirror_axis >= 0 ? flip_partner(e) : e;
+          const Edge image = flip_partner(e);
           if (image.is_valid() && (image == e || mesh.is_flip_ok(image))) {
             mesh.flip(e);
             if (image != e) mesh.flip(image);

@@ -43,8 +43,6 @@ void Remesher::disable_mirror() {
   if (m.mirror.is_valid()) m.mesh.remove_vertex_property(m.mirror);
 }
 
-bool Remesher::mirror_enabled() const { return impl_->mirror_axis >= 0; }
-
 const std::vector<Vertex>* Remesher::mirror_map() const {
   return impl_->mirror_axis >= 0 ? &impl_->mirror.vector() : nullptr;
 }
@@ -73,6 +71,7 @@ bool Remesher::Impl::overlaps_its_image(Vertex a, Vertex b) {
 }
 
 Edge Remesher::Impl::flip_partner(Edge e) {
+  if (mirror_axis < 0) return e;
   const Edge img = mirror_edge(e);
   if (!img.is_valid() || img == e) return img;
   const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
@@ -84,6 +83,10 @@ Edge Remesher::Impl::flip_partner(Edge e) {
 }
 
 size_t Remesher::Impl::collapse_with_mirror(Halfedge h, bool midpoint) {
+  if (mirror_axis < 0) {
+    apply_collapse(h, midpoint);
+    return 1;
+  }
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   const Vertex m0 = mirror[v0], m1 = mirror[v1];
   if (m0 == v1) {

@@ -66,7 +66,6 @@ bool Remesher::Impl::refine_neck_at(Edge e) {
     w_best = w;
   }
   if (!w_best.is_valid()) return false;
-  const Vertex loop[3] = {a, b, w_best};
   const Point& pw = mesh.position(w_best);
   const Point centre = (pa + pb + pw) / 3.0;
   // The loop lies across the neck: its normal is the neck's direction.
@@ -84,7 +83,7 @@ bool Remesher::Impl::refine_neck_at(Edge e) {
   necks.push_back({centre, size});
   lower_reference_sizing(centre, size, {ref_hint[a], ref_hint[b], ref_hint[w_best]});
   // The current vertices too, for the splits of the next iteration.
-  std::vector<Vertex> seeds(loop, loop + 3);
+  const std::vector<Vertex> seeds = {a, b, w_best};
   for (Vertex v : seeds) sizing[v] = std::min(sizing[v], size + kGradation * glm::length(mesh.position(v) - centre));
   limit_sizing_gradation(mesh, seeds, sizing, kGradation);
   return true;

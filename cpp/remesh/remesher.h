@@ -68,7 +68,6 @@ class Remesher {
   // Returns false, and leaves mirroring off, when the mesh is not exactly symmetric.
   bool enable_mirror(int axis);
   void disable_mirror();
-  bool mirror_enabled() const;
   // While mirroring: the vertex at v's mirror image (vertices the iterations add included),
   // indexed by vertex index; nullptr when mirroring is off.
   const std::vector<Vertex>* mirror_map() const;

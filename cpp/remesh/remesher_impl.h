@@ -157,17 +157,18 @@ struct Remesher::Impl {
   // operation on the edge (a, b) and the same on its image may interfere.
   bool overlaps_its_image(Vertex a, Vertex b);
   // For a flip of e (a, b with opposite c, d): the edge to flip with it (e itself when e is its
-  // own image), or an invalid handle when the two quads share a vertex (flip neither).
+  // own image or when not mirroring), or an invalid handle when the two quads share a vertex
+  // (flip neither).
   Edge flip_partner(Edge e);
   void stop_mirroring();
   void close_region_under_mirror(std::vector<Vertex>& region);
   void symmetrize_sizing(const std::vector<Vertex>& vertices);
   void symmetrize_positions();
-  // Collapses h (midpoint: both ends meet in the middle) and its image; returns the number of
-  // collapses done (0 when the pair cannot be done symmetrically).
+  // Collapses h (midpoint: both ends meet in the middle) and, while mirroring, its image; returns
+  // the number of collapses done (0 when the pair cannot be done symmetrically).
   size_t collapse_with_mirror(Halfedge h, bool midpoint);
-  // Splits e at its midpoint and its image at the image of that point unless e is no longer
-  // long (it was split as the image of an earlier edge); returns the number of splits.
+  // Splits e at its midpoint and, while mirroring, its image at the image of that point, unless e
+  // is no longer long (it was split as the image of an earlier edge); returns the splits done.
   size_t split_with_mirror(Edge e);
   size_t split_shared_triangle(Edge e, Edge image);
 
@@ -192,6 +193,8 @@ struct Remesher::Impl {
   void apply_collapse(Halfedge h, bool midpoint);
   bool flip_geometry_ok(Edge e, bool require_flat) const;
   bool flip_topology_ok(Edge e) const;  // needs `valence` current (flip passes)
+  // Flips e and keeps `valence` and `valence_excess` of its quad's corners up to date.
+  void flip_counting(Edge e);
   Vertex split_edge(Edge e, const Point& p);
   IterationStats run_iteration(bool project);
 };

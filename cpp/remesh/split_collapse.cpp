@@ -73,8 +73,12 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
 size_t Remesher::Impl::split_with_mirror(Edge e) {
   const double limit = kSplitFactor * target_length(e);
   if (squared_length(mesh, e) <= limit * limit) return 0;  // split already, as an image
-  const Edge image = mirror_edge(e);
   const Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
+  if (mirror_axis < 0) {
+    split_edge(e, mid);
+    return 1;
+  }
+  const Edge image = mirror_edge(e);
   const size_t first = image.is_valid() && image != e ? split_shared_triangle(e, image) : 0;
   const Vertex v = split_edge(e, mid);
   if (mirror_axis < 0) return 1;  // symmetry lost: a plain split
@@ -150,14 +154,7 @@ size_t Remesher::Impl::split_long_edges() {
     const size_t first_new = scope_vertices.size();
     for (const auto& c : candidates) {
       if (splits >= max_splits) break;
-      Edge e = c.second;
-      if (mirror_axis >= 0) {
-        splits += split_with_mirror(e);
-        continue;
-      }
-      Point mid = 0.5 * (mesh.position(mesh.vertex(e, 0)) + mesh.position(mesh.vertex(e, 1)));
-      split_edge(e, mid);
-      ++splits;
+      splits += split_with_mirror(c.second);
     }
     // Only edges at the new vertices can still be too long: the others were not touched.
     scope_edges.clear();
@@ -319,12 +316,7 @@ size_t Remesher::Impl::collapse_short_edges() {
       refine_neck_at(e);
       continue;
     }
-    if (mirror_axis >= 0) {
-      collapses += collapse_with_mirror(h, midpoint);
-      continue;
-    }
-    apply_collapse(h, midpoint);
-    ++collapses;
+    collapses += collapse_with_mirror(h, midpoint);
   }
   return collapses;
 }
