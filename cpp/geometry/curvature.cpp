@@ -1,5 +1,6 @@
 #include "geometry/curvature.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -61,6 +62,37 @@ double cot_scaled(double cos_scaled, double sin_scaled) {
   if (std::abs(cos_scaled) >= kMaxCotan * sin_scaled) return cos_scaled > 0 ? kMaxCotan : -kMaxCotan;
   return cos_scaled / sin_scaled;
 }
+
+// The sum of angles in [0, pi], each given as a scaled cosine and sine, with ONE atan2 instead of
+// one per angle (the atan2s were a third of a sculpting frame's curvature work): the angles are
+// added as the arguments of complex numbers multiplied together. Each angle is at most pi, so the
+// running argument wraps past 2 pi exactly when it goes from the lower half-plane [pi, 2 pi) to
+// the upper one [0, pi); the wraps are counted. The product is rescaled each step (its modulus is
+// the product of edge-length squares and would underflow around a high-valence vertex).
+class AngleSum {
+ public:
+  void add(double cos_scaled, double sin_scaled) {
+    const bool was_lower = lower_half();
+    const double x = x_ * cos_scaled - y_ * sin_scaled;
+    const double y = x_ * sin_scaled + y_ * cos_scaled;
+    const double scale = std::max(std::abs(x), std::abs(y));
+    if (!(scale > 0.0)) return;  // a zero-area, zero-length corner adds no angle
+    x_ = x / scale;
+    y_ = y / scale;
+    if (was_lower && !lower_half()) ++turns_;
+  }
+  double radians() const {
+    double arg = portable::atan2(y_, x_);  // (-pi, pi]
+    if (arg < 0.0) arg += kTwoPi;
+    return turns_ * kTwoPi + arg;
+  }
+
+ private:
+  // The argument is in [pi, 2 pi): below the real axis, or on its negative side.
+  bool lower_half() const { return y_ < 0.0 || (y_ == 0.0 && x_ < 0.0); }
+  double x_ = 1.0, y_ = 0.0;
+  int turns_ = 0;
+};
 }  // namespace
 
 double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
@@ -68,7 +100,8 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   // One walk around the fan gathers what mixed_voronoi_area, cotan_laplacian and the angle
   // sum compute separately (the remesher calls this for every vertex of a sculpting region
   // every frame): each corner's cross product serves the area, both cotangents and the angle.
-  double area = 0.0, angle_sum = 0.0;
+  double area = 0.0;
+  AngleSum angle_sum;
   Vec3 laplacian(0.0);
   for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
     const Vec3 pq = q - p, pr = r - p, qr = r - q;
@@ -76,7 +109,7 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
     const double twice_area = glm::length(glm::cross(pq, pr));
     const double cot_q = cot_scaled(dot_q, twice_area), cot_r = cot_scaled(dot_r, twice_area);
     laplacian += cot_r * pq + cot_q * pr;
-    angle_sum += portable::atan2(twice_area, dot_p);
+    angle_sum.add(dot_p, twice_area);
     if (dot_p < 0)
       area += 0.25 * twice_area;
     else if (dot_q < 0 || dot_r < 0)
@@ -88,7 +121,7 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   const double mean = glm::length(laplacian) / (4.0 * area);
   // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn
   // a 1e-15 defect on a flat patch into a 1e-7 curvature.
-  double defect = kTwoPi - angle_sum;
+  double defect = kTwoPi - angle_sum.radians();
   if (std::abs(defect) < 1e-12) defect = 0.0;
   const double gauss = defect / area;
   return mean + std::sqrt(std::max(mean * mean - gauss, 0.0));

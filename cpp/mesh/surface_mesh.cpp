@@ -153,15 +153,6 @@ Halfedge SurfaceMesh::find_halfedge(Vertex a, Vertex b) const {
   return Halfedge();
 }
 
-void SurfaceMesh::face_vertices(Face f, Vertex out[3]) const {
-  Halfedge h = halfedge(f);
-  out[0] = to_vertex(h);
-  h = next(h);
-  out[1] = to_vertex(h);
-  h = next(h);
-  out[2] = to_vertex(h);
-}
-
 void SurfaceMesh::delete_vertex_mark(Vertex v) {
   if (!vdeleted_[v]) {
     vdeleted_[v] = 1;
@@ -467,20 +458,21 @@ void SurfaceMesh::validate() const {
   for (Index i = 0; i < nh; ++i) {
     Halfedge h(i);
     if (is_deleted(h)) continue;
-    auto hn = name("halfedge", i);
+    // Names are built only on failure: validate() runs on every loaded mesh.
+    auto hn = [i] { return name("halfedge", i); };
     Vertex to = to_vertex(h);
-    if (!to.is_valid() || to.idx >= nv || is_deleted(to)) fail(hn + " points to a missing vertex");
+    if (!to.is_valid() || to.idx >= nv || is_deleted(to)) fail(hn() + " points to a missing vertex");
     Halfedge n = next(h), p = prev(h);
-    if (!n.is_valid() || n.idx >= nh || is_deleted(n)) fail(hn + " has a missing next");
-    if (!p.is_valid() || p.idx >= nh || is_deleted(p)) fail(hn + " has a missing prev");
-    if (prev(n) != h || next(p) != h) fail(hn + ": next/prev disagree");
-    if (n == h) fail(hn + " is its own next");
-    if (from_vertex(n) != to) fail(hn + ": next does not start where it ends");
-    if (to == from_vertex(h)) fail(hn + " is a loop");
+    if (!n.is_valid() || n.idx >= nh || is_deleted(n)) fail(hn() + " has a missing next");
+    if (!p.is_valid() || p.idx >= nh || is_deleted(p)) fail(hn() + " has a missing prev");
+    if (prev(n) != h || next(p) != h) fail(hn() + ": next/prev disagree");
+    if (n == h) fail(hn() + " is its own next");
+    if (from_vertex(n) != to) fail(hn() + ": next does not start where it ends");
+    if (to == from_vertex(h)) fail(hn() + " is a loop");
     Face f = face(h);
-    if (f.is_valid() && (f.idx >= nf || is_deleted(f))) fail(hn + " refers to a deleted face");
-    if (face(n) != f) fail(hn + ": next lies in another face");
-    if (is_boundary(h) && is_boundary(opposite(h))) fail(hn + ": edge has no face on either side");
+    if (f.is_valid() && (f.idx >= nf || is_deleted(f))) fail(hn() + " refers to a deleted face");
+    if (face(n) != f) fail(hn() + ": next lies in another face");
+    if (is_boundary(h) && is_boundary(opposite(h))) fail(hn() + ": edge has no face on either side");
   }
   for (Index i = 0; i < nf; ++i) {
     Face f(i);
@@ -498,27 +490,27 @@ void SurfaceMesh::validate() const {
   for (Index i = 0; i < nv; ++i) {
     Vertex v(i);
     if (is_deleted(v)) continue;
-    auto vn = name("vertex", i);
+    auto vn = [i] { return name("vertex", i); };
     Halfedge start = halfedge(v);
     if (!start.is_valid()) {
-      if (outgoing_count[i]) fail(vn + " has edges but no halfedge");
+      if (outgoing_count[i]) fail(vn() + " has edges but no halfedge");
       continue;
     }
-    if (start.idx >= nh || is_deleted(start) || from_vertex(start) != v) fail(vn + ": halfedge is not outgoing");
+    if (start.idx >= nh || is_deleted(start) || from_vertex(start) != v) fail(vn() + ": halfedge is not outgoing");
     Index count = 0, boundary = 0;
     Halfedge h = start;
     do {
-      if (from_vertex(h) != v) fail(vn + ": rotation leaves the vertex");
+      if (from_vertex(h) != v) fail(vn() + ": rotation leaves the vertex");
       Vertex w = to_vertex(h);
-      if (seen_mark[w.idx] == i) fail(vn + " has two edges to vertex " + std::to_string(w.idx));
+      if (seen_mark[w.idx] == i) fail(vn() + " has two edges to vertex " + std::to_string(w.idx));
       seen_mark[w.idx] = i;
       boundary += is_boundary(h);
-      if (++count > outgoing_count[i]) fail(vn + ": rotation does not close");
+      if (++count > outgoing_count[i]) fail(vn() + ": rotation does not close");
       h = cw_rotated(h);
     } while (h != start);
-    if (count != outgoing_count[i]) fail(vn + " is non-manifold (more than one fan)");
-    if (boundary > 1) fail(vn + " lies on the boundary twice");
-    if (boundary == 1 && !is_boundary(start)) fail(vn + ": boundary vertex without boundary halfedge");
+    if (count != outgoing_count[i]) fail(vn() + " is non-manifold (more than one fan)");
+    if (boundary > 1) fail(vn() + " lies on the boundary twice");
+    if (boundary == 1 && !is_boundary(start)) fail(vn() + ": boundary vertex without boundary halfedge");
   }
 }
 

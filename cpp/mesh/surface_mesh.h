@@ -81,8 +81,16 @@ class SurfaceMesh {
   size_t valence(Vertex v) const;
   // The halfedge from a to b, or an invalid handle.
   Halfedge find_halfedge(Vertex a, Vertex b) const;
-  // The three vertices of a triangle, starting at to_vertex(halfedge(f)).
-  void face_vertices(Face f, Vertex out[3]) const;
+  // The three vertices of a triangle, starting at to_vertex(halfedge(f)). Inline: whole-mesh
+  // scans (picking, render buffers, quality) call it once per face.
+  void face_vertices(Face f, Vertex out[3]) const {
+    const HalfedgeConnectivity* hc = hconn_.vector().data();
+    const HalfedgeConnectivity& c0 = hc[halfedge(f).idx];
+    const HalfedgeConnectivity& c1 = hc[c0.next.idx];
+    out[0] = c0.to;
+    out[1] = c1.to;
+    out[2] = hc[c1.next.idx].to;
+  }
 
   // ---- deletion marks
   bool is_deleted(Vertex v) const { return vdeleted_[v] != 0; }

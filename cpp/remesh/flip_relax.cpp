@@ -292,28 +292,36 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
   for (int pass = 0; pass < 3; ++pass) {
     size_t fixed_this_pass = 0;
     faces_scratch.clear();
-    if (whole_mesh) {
-      // Every face slot in order, below: collapses and flips add no faces, and the deleted
-      // check at each visit skips what the snapshot of live faces would have skipped.
-    } else {
-      // Each face once: from its first active corner in halfedge order.
-      for (Vertex v : scope_vertices) {
-        if (mesh.is_deleted(v) || scope[v] != kActive) continue;
-        for (Halfedge h : mesh.halfedges(v)) {
-          if (mesh.is_boundary(h)) continue;
-          Vertex prev_corner = mesh.from_vertex(mesh.prev(h));  // the corner before v
-          Vertex next_corner = mesh.to_vertex(h);
-          bool earlier = (scope[prev_corner] == kActive && prev_corner.idx < v.idx) ||
-                         (scope[next_corner] == kActive && next_corner.idx < v.idx);
-          if (!earlier) faces_scratch.push_back(mesh.face(h));
-        }
-      }
-    }
     // Flat arrays: collapses and flips add no elements, so the pointers stay valid.
     const auto* hc = mesh.halfedge_connectivity_data();
     const Halfedge* fh = mesh.face_halfedge_data();
     const std::uint8_t* fdel = mesh.face_deleted_data();
     const Point* pos = mesh.positions().data();
+    if (whole_mesh) {
+      // Every face slot in order, below: collapses and flips add no faces, and the deleted
+      // check at each visit skips what the snapshot of live faces would have skipped.
+    } else {
+      // Each face once: from its first active corner in halfedge order.
+      const Halfedge* vh = mesh.vertex_halfedge_data();
+      const std::uint8_t* vdel = mesh.vertex_deleted_data();
+      const std::uint8_t* sc = scope.vector().data();
+      for (Vertex v : scope_vertices) {
+        const Halfedge start = vh[v.idx];
+        if (vdel[v.idx] || sc[v.idx] != kActive || !start.is_valid()) continue;
+        Halfedge h = start;
+        do {
+          const auto& ch = hc[h.idx];
+          if (ch.face.is_valid()) {
+            const mesh::Index prev_corner = hc[ch.next.idx].to.idx;  // the corner before v
+            const mesh::Index next_corner = ch.to.idx;
+            const bool earlier = (sc[prev_corner] == kActive && prev_corner < v.idx) ||
+                                 (sc[next_corner] == kActive && next_corner < v.idx);
+            if (!earlier) faces_scratch.push_back(ch.face);
+          }
+          h = hc[h.idx ^ 1u].next;
+        } while (h != start);
+      }
+    }
     const size_t n_visits = whole_mesh ? mesh.faces_size() : faces_scratch.size();
     for (size_t k = 0; k < n_visits; ++k) {
       const mesh::Face f = whole_mesh ? mesh::Face(static_cast<Index>(k)) : faces_scratch[k];

@@ -144,16 +144,21 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
     for (Vertex v : vertices) sizing[v] = opt.target_length;
     return;
   }
+  // kappa_known marks the given vertices only, and is cleared again below: the sculpting frames
+  // call this on a few hundred vertices of a mesh that may have millions.
   kappa.resize(mesh.vertices_size());
-  kappa_known.assign(mesh.vertices_size(), 0);
-  for (Vertex v : vertices) {
-    kappa[v.idx] = geometry::max_abs_curvature(mesh, v);
-    kappa_known[v.idx] = 1;
+  kappa_known.resize(mesh.vertices_size(), 0);
+  for (Vertex v : vertices) kappa_known[v.idx] = 1;
+  if (clamp_decides_sizing()) {
+    for (Vertex v : vertices)
+      if (vclass[v] == kFree) sizing[v] = opt.min_length;
+  } else {
+    for (Vertex v : vertices) kappa[v.idx] = geometry::max_abs_curvature(mesh, v);
+    for (Vertex v : vertices)
+      if (vclass[v] == kFree)
+        sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, &kappa_known, v), opt.epsilon,
+                                          opt.min_length, opt.max_length);
   }
-  for (Vertex v : vertices)
-    if (vclass[v] == kFree)
-      sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, &kappa_known, v), opt.epsilon,
-                                        opt.min_length, opt.max_length);
   average_feature_sizing(vertices);
   // A region meets the untouched mesh at its held border. Where that mesh is finer than the
   // target (a brush coarsening a fine scan), the border's vertices keep their own mean edge
@@ -172,6 +177,7 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
     if (sum > 0) sizing[v] = std::min(sizing[v], sum / n);
   }
   limit_sizing_gradation(mesh, vertices, sizing, kGradation, &kappa_known);
+  for (Vertex v : vertices) kappa_known[v.idx] = 0;
   if (mirror_axis >= 0) symmetrize_sizing(vertices);
 }
 
@@ -181,11 +187,16 @@ void Remesher::Impl::build_reference() {
   for (Vertex v : mesh.vertices()) all.push_back(v);
 
   if (opt.adaptive) {
-    geometry::max_abs_curvature(mesh, kappa);
-    for (Vertex v : all)
-      if (vclass[v] == kFree)
-        sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, nullptr, v), opt.epsilon,
-                                          opt.min_length, opt.max_length);
+    if (clamp_decides_sizing()) {
+      for (Vertex v : all)
+        if (vclass[v] == kFree) sizing[v] = opt.min_length;
+    } else {
+      geometry::max_abs_curvature(mesh, kappa);
+      for (Vertex v : all)
+        if (vclass[v] == kFree)
+          sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, nullptr, v), opt.epsilon,
+                                            opt.min_length, opt.max_length);
+    }
     average_feature_sizing(all);
     limit_sizing_gradation(mesh, all, sizing, kGradation);
   } else {

@@ -135,15 +135,30 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       m.scope[v] = kActive;
       m.scope_vertices.push_back(v);
     }
-  // Vertices with a neighbour outside the region hold the border in place.
-  for (Vertex v : m.scope_vertices)
-    for (Vertex w : m.mesh.vertices(v))
-      if (m.scope[w] == kOutside) {
-        m.scope[v] = kHeld;
-        break;
+  // Vertices with a neighbour outside the region hold the border in place, and the feature
+  // classification may be stale where the deformation added vertices (classify_vertex): one walk
+  // around each fan on the flat arrays does both.
+  {
+    const auto* hc = m.mesh.halfedge_connectivity_data();
+    const Halfedge* vh = m.mesh.vertex_halfedge_data();
+    const std::uint8_t* feat = m.feature.vector().data();
+    std::uint8_t* sc = m.scope.vector().data();
+    for (Vertex v : m.scope_vertices) {
+      const Halfedge start = vh[v.idx];
+      int features = 0;
+      bool held = false;
+      if (start.is_valid()) {
+        Halfedge h = start;
+        do {
+          held = held || sc[hc[h.idx].to.idx] == kOutside;
+          features += feat[h.idx >> 1] != 0;
+          h = hc[h.idx ^ 1u].next;
+        } while (h != start);
       }
-  // Feature classification may be stale where the deformation added vertices.
-  for (Vertex v : m.scope_vertices) m.classify_vertex(v);
+      if (held) sc[v.idx] = kHeld;
+      m.vclass[v] = features == 0 ? kFree : features == 2 ? kFeatureLine : kCorner;
+    }
+  }
   // The curvature of a surface being dragged changes little from one frame to the next: the
   // sizing is measured again every few calls, and vertices added in between carry the mean
   // of their edge's ends (split_edge).

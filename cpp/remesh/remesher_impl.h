@@ -118,6 +118,9 @@ struct Remesher::Impl {
   void drop_isolated_features();
   void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
+  // min_length == max_length (a constant detail, as the brush comparison and some sculptors use):
+  // the clamp gives every free vertex that length whatever its curvature, so none is measured.
+  bool clamp_decides_sizing() const { return !(opt.min_length < opt.max_length); }
   void average_feature_sizing(const std::vector<Vertex>& vertices);
   double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
   geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint) const;

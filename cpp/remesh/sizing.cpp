@@ -19,10 +19,21 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
                             mesh::VertexProperty<double>& sizing, double gradation,
                             const std::vector<std::uint8_t>* inside) {
   // Dijkstra from the smallest values outwards: each vertex is finalised with the smallest
-  // bound any neighbour imposes.
+  // bound any neighbour imposes. Only vertices that lower a neighbour start in the queue: one
+  // that cannot with its neighbours' first values cannot later either (values only drop), and on
+  // a field that is already graded (most of a sculpting frame's region) the queue stays small.
   using Item = std::pair<double, mesh::Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (mesh::Vertex v : vertices) queue.push({sizing[v], v.idx});
+  for (mesh::Vertex v : vertices) {
+    const double value = sizing[v];
+    for (mesh::Vertex w : mesh.vertices(v)) {
+      if (inside && !(*inside)[w.idx]) continue;
+      if (value + gradation * glm::length(mesh.position(w) - mesh.position(v)) < sizing[w]) {
+        queue.push({value, v.idx});
+        break;
+      }
+    }
+  }
   while (!queue.empty()) {
     auto [value, idx] = queue.top();
     queue.pop();

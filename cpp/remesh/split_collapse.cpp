@@ -19,14 +19,17 @@ constexpr int kRegionSplitPasses = 2;
 // Squared length / squared collapse threshold below which an edge may collapse to its midpoint.
 constexpr double kMidpointCollapseRatio = 0.25;
 
-double squared_length(const SurfaceMesh& m, Edge e) {
-  Vec3 d = m.position(m.vertex(e, 0)) - m.position(m.vertex(e, 1));
-  return glm::dot(d, d);
+// Called for every edge of the scope by both passes: read straight from the flat arrays, and
+// inlined (g++ -O2 kept it out of line, 5 % of a sculpting frame's instructions in calls).
+[[gnu::always_inline]] inline double squared_length(const SurfaceMesh& m, Edge e) {
+  const auto* hc = m.halfedge_connectivity_data();
+  const Point* pos = m.positions().data();
+  const Point& a = pos[hc[e.idx << 1].to.idx];
+  const Point& b = pos[hc[(e.idx << 1) | 1u].to.idx];
+  const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  return dx * dx + dy * dy + dz * dz;
 }
 
-}  // namespace
-
-namespace {
 }  // namespace
 
 void Remesher::Impl::gather_scope_edges() {
@@ -35,14 +38,22 @@ void Remesher::Impl::gather_scope_edges() {
     for (Edge e : mesh.edges()) scope_edges.push_back(e);
     return;
   }
+  // The fans walked on the flat arrays, in the order of mesh.halfedges(v): two calls per
+  // sculpting frame, over every edge of the region.
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Halfedge* vh = mesh.vertex_halfedge_data();
+  const std::uint8_t* vdel = mesh.vertex_deleted_data();
+  const std::uint8_t* sc = scope.vector().data();
   for (Vertex v : scope_vertices) {
-    if (mesh.is_deleted(v)) continue;
-    for (Halfedge h : mesh.halfedges(v)) {
-      Vertex w = mesh.to_vertex(h);
-      // Each edge once: from its lower-index end, or from v when w is outside the scope.
-      if (scope[w] == kOutside) continue;
-      if (v.idx < w.idx) scope_edges.push_back(mesh.edge(h));
-    }
+    const Halfedge start = vh[v.idx];
+    if (vdel[v.idx] || !start.is_valid()) continue;
+    Halfedge h = start;
+    do {
+      // Each edge once, from its lower-index end; none to a vertex outside the scope.
+      const mesh::Index w = hc[h.idx].to.idx;
+      if (sc[w] != kOutside && v.idx < w) scope_edges.push_back(SurfaceMesh::edge(h));
+      h = hc[h.idx ^ 1u].next;
+    } while (h != start);
   }
 }
 

@@ -1,12 +1,15 @@
 // Discrete curvature and normals on surfaces whose curvature is known.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "geometry/curvature.h"
 #include "geometry/normals.h"
 #include "geometry/triangle.h"
 #include "geometry_test_util.h"
+#include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 
 using namespace adasculpt;
@@ -36,6 +39,42 @@ TEST(GeometryCurvature, PlaneIsFlat) {
     EXPECT_NEAR(max_abs_curvature(m, v), 0.0, 1e-9);
     if (!m.is_boundary(v)) {
       EXPECT_NEAR(glm::length(cotan_laplacian(m, v)), 0.0, 1e-12);
+    }
+  }
+}
+
+// A fan around one vertex whose ring waves up and down (a monkey saddle): the angles around the
+// centre add up to between 2 pi and 5 pi depending on the wave's height. max_abs_curvature sums the
+// angles as complex arguments, counting turns; this checks it against one atan2 per corner.
+TEST(GeometryCurvature, SaddleAngleSumsPastTwoTurnsMatchPerCornerAngles) {
+  const int n = 24;
+  for (double height : {0.0, 0.3, 1.0, 3.0, 10.0, 40.0}) {
+    for (int waves : {2, 3, 5}) {
+      std::vector<std::array<double, 3>> points{{0, 0, 0}};
+      std::vector<std::array<std::uint32_t, 3>> triangles;
+      for (int k = 0; k < n; ++k) {
+        const double t = 2 * M_PI * k / n;
+        points.push_back({std::cos(t), std::sin(t), height * std::sin(waves * t)});
+        triangles.push_back({0, std::uint32_t(1 + k), std::uint32_t(1 + (k + 1) % n)});
+      }
+      const mesh::SurfaceMesh m = mesh::build_from_triangles(points, triangles);
+      const mesh::Vertex c(0);
+      ASSERT_FALSE(m.is_boundary(c));
+      double angles = 0;
+      for (mesh::Halfedge h : m.halfedges(c)) {
+        const Vec3 u = m.position(m.to_vertex(h)) - m.position(c);
+        const Vec3 w = m.position(m.to_vertex(m.next(h))) - m.position(c);
+        angles += std::atan2(glm::length(glm::cross(u, w)), glm::dot(u, w));
+      }
+      const double area = mixed_voronoi_area(m, c);
+      const double mean = glm::length(cotan_laplacian(m, c)) / (4 * area);
+      const double gauss = (2 * M_PI - angles) / area;
+      const double expected = mean + std::sqrt(std::max(mean * mean - gauss, 0.0));
+      EXPECT_NEAR(max_abs_curvature(m, c), expected, 1e-9 * (1 + expected)) << "height " << height << ", waves " << waves
+                                                                           << ", angle sum " << angles / M_PI << " pi";
+      if (height == 40.0 && waves == 5) {
+        EXPECT_GT(angles, 4 * M_PI);  // the case has more than two turns
+      }
     }
   }
 }
