@@ -18,6 +18,9 @@ constexpr double kPoorAngleDeg = 30.0;
 constexpr double kDegenerateAngleDeg = 1.0;
 // Triangles below this angle after an iteration get a dedicated collapse or flip.
 constexpr double kSliverAngleDeg = 12.0;
+// Triangles below this angle get their corners moved (sliver.cpp): in necks after each
+// whole-mesh iteration, anywhere once the iterations are done (Remesher::polish).
+constexpr double kPlacedSliverAngleDeg = 25.0;
 // Region iterations between two measurements of the sizing field (see iterate_region).
 constexpr int kRegionSizingInterval = 4;
 }  // namespace
@@ -113,6 +116,7 @@ IterationStats Remesher::iterate() {
   m.whole_mesh = true;
   m.region_calls_since_sizing = 0;
   IterationStats stats = m.run_iteration(m.opt.projection);
+  m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
   m.whole_mesh = false;
   {
     const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
@@ -179,10 +183,26 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   return stats;
 }
 
+size_t Remesher::polish() {
+  Impl& m = *impl_;
+  const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
+  std::uint8_t* scope = m.scope.vector().data();
+  const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
+  for (mesh::Index i = 0; i < n; ++i)
+    if (!deleted[i]) scope[i] = kActive;
+  m.whole_mesh = true;
+  const size_t moved = m.place_sliver_vertices(kPlacedSliverAngleDeg, false);
+  m.whole_mesh = false;
+  for (mesh::Index i = 0; i < n; ++i)
+    if (!deleted[i]) scope[i] = kOutside;
+  return moved;
+}
+
 void remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
   {
     Remesher remesher(mesh, options);
     for (int i = 0; i < options.iterations; ++i) remesher.iterate();
+    remesher.polish();
   }
   mesh.garbage_collection();
 }

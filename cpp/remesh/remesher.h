@@ -54,6 +54,10 @@ class Remesher {
 
   // One iteration over the whole mesh (projection as in the options).
   IterationStats iterate();
+  // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
+  // that no collapse or flip could remove to better places on the reference surface. Returns
+  // the number of vertices moved (0 before the first iteration).
+  size_t polish();
   // One iteration restricted to the given vertices: only edges with both ends in the set are
   // touched and vertices on the border of the set stay where they are. No projection; the
   // curvature and sizing are taken from the current surface (the sculpting frame).

@@ -144,6 +144,9 @@ struct Remesher::Impl {
   void relax_vertices();
   void project_vertices();
   size_t fix_bad_faces(double angle_deg);
+  // Moves the free corners of triangles under angle_deg, and in necks those of crossing
+  // triangles, to better places on the reference (sliver.cpp); only in necks with necks_only.
+  size_t place_sliver_vertices(double angle_deg, bool necks_only);
 
   // ---- mirror symmetry (mirror.cpp): see Remesher::enable_mirror
   int mirror_axis = -1;         // >= 0 while mirroring
