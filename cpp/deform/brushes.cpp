@@ -9,6 +9,7 @@
 
 #include "geometry/normals.h"
 #include "geometry/triangle.h"
+#include "mesh/scratch.h"
 
 namespace adasculpt::deform {
 
@@ -115,11 +116,11 @@ Point closest_point_around(const SurfaceMesh& mesh, Vertex v, const Point& p) {
 
 void BrushDeformer::grow(size_t n) {
   if (mark_.size() >= n) return;
-  mark_.resize(n, 0);
-  in_stamp_.resize(n, 0);
-  slot_.resize(n, 0);
-  sum_.resize(n, Vec3(0.0));
-  count_.resize(n, 0);
+  mesh::resize_scratch(mark_, n, 0);
+  mesh::resize_scratch(in_stamp_, n, 0);
+  mesh::resize_scratch(slot_, n, 0);
+  mesh::resize_scratch(sum_, n, Vec3(0.0));
+  mesh::resize_scratch(count_, n, 0);
 }
 
 void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double radius) {
@@ -155,8 +156,8 @@ void BrushDeformer::smooth_normals(const SurfaceMesh& mesh, double displacement)
   // moving together. Jacobi averaging over one ring per pass diffuses over about sqrt(passes)
   // rings, so (displacement / mean edge length)^2 passes, bounded.
   const size_t n = inside_.size();
-  smooth_normal_.resize(n);
-  next_normal_.resize(n);
+  mesh::resize_scratch(smooth_normal_, n);
+  mesh::resize_scratch(next_normal_, n);
   double edge_sum = 0;
   size_t edges = 0;
   for (size_t k = 0; k < n; ++k) {

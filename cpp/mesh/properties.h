@@ -61,7 +61,7 @@ class PropertyArray : public BasePropertyArray {
 class PropertyContainer {
  public:
   PropertyContainer() = default;
-  PropertyContainer(const PropertyContainer& o) : size_(o.size_) {
+  PropertyContainer(const PropertyContainer& o) : size_(o.size_), capacity_(o.size_) {
     for (const auto& a : o.arrays_) arrays_.push_back(a->clone());
   }
   PropertyContainer& operator=(const PropertyContainer& o) {
@@ -78,6 +78,7 @@ class PropertyContainer {
   PropertyArray<T>* add(const std::string& name, T default_value) {
     if (find(name)) throw std::logic_error("property '" + name + "' already exists");
     auto arr = std::make_unique<PropertyArray<T>>(name, std::move(default_value));
+    arr->reserve(capacity_);  // room for the elements the others have room for (see push_back)
     arr->resize(size_);
     auto* raw = arr.get();
     arrays_.push_back(std::move(arr));
@@ -101,13 +102,21 @@ class PropertyContainer {
   }
   size_t size() const { return size_; }
   void resize(size_t n) {
+    if (n > capacity_) reserve(n);
     for (auto& a : arrays_) a->resize(n);
     size_ = n;
   }
   void reserve(size_t n) {
+    if (n <= capacity_) return;
     for (auto& a : arrays_) a->reserve(n);
+    capacity_ = n;
   }
+  // All arrays grow together, by half, and an array added later starts with the same room: a
+  // sculpting stroke adds the remesher's arrays to a mesh, and each array growing on its own at
+  // the stroke's first split copied every array of the mesh in the middle of a frame (13 ms on
+  // the 35k-vertex bunny).
   void push_back() {
+    if (size_ == capacity_) reserve(size_ + size_ / 2 + 16);
     for (auto& a : arrays_) a->push_back();
     ++size_;
   }
@@ -119,6 +128,7 @@ class PropertyContainer {
  private:
   std::vector<std::unique_ptr<BasePropertyArray>> arrays_;
   size_t size_ = 0;
+  size_t capacity_ = 0;  // every array has room for this many elements
 };
 
 // Typed access to one property array through element handles of type H.

@@ -73,8 +73,8 @@ void Remesher::Impl::flip_counting(Edge e) {
 // The loops read the mesh's flat arrays (flips add no elements, so the pointers stay valid): on
 // a converged mesh almost every edge is rejected by the valence test, which must stay cheap.
 size_t Remesher::Impl::flip_edges() {
-  valence.resize(mesh.vertices_size());
-  valence_excess.resize(mesh.vertices_size());
+  mesh::resize_scratch(valence, mesh.vertices_size());
+  mesh::resize_scratch(valence_excess, mesh.vertices_size());
   const auto* hc = mesh.halfedge_connectivity_data();
   const Halfedge* vh = mesh.vertex_halfedge_data();
   const std::uint8_t* vdel = mesh.vertex_deleted_data();
@@ -130,7 +130,7 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   const double poor_sin2 = portable::sin(poor_angle) * portable::sin(poor_angle);
   // Each face's smallest-angle measure once, not once per edge: most edges of a good mesh
   // are rejected by these two lookups alone.
-  face_quality.resize(mesh.faces_size());
+  mesh::resize_scratch(face_quality, mesh.faces_size());
   const auto* hc = mesh.halfedge_connectivity_data();
   const Halfedge* fh = mesh.face_halfedge_data();
   const std::uint8_t* edel = mesh.edge_deleted_data();
@@ -149,7 +149,7 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
       if (!fdel[f]) fq[f] = quality_of(f);
   } else {
     // Each face once, though up to three of its edges are in scope.
-    face_seen.resize(mesh.faces_size(), 0);
+    mesh::resize_scratch(face_seen, mesh.faces_size(), 0u);
     if (++face_run == 0) {
       std::fill(face_seen.begin(), face_seen.end(), 0);
       face_run = 1;

@@ -146,8 +146,8 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
   }
   // kappa_known marks the given vertices only, and is cleared again below: the sculpting frames
   // call this on a few hundred vertices of a mesh that may have millions.
-  kappa.resize(mesh.vertices_size());
-  kappa_known.resize(mesh.vertices_size(), 0);
+  mesh::resize_scratch(kappa, mesh.vertices_size());
+  mesh::resize_scratch(kappa_known, mesh.vertices_size(), std::uint8_t(0));
   for (Vertex v : vertices) kappa_known[v.idx] = 1;
   if (clamp_decides_sizing()) {
     for (Vertex v : vertices)

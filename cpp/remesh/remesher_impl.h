@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/aabb_tree.h"
+#include "mesh/scratch.h"
 #include "remesh/remesher.h"
 
 namespace adasculpt::remesh {

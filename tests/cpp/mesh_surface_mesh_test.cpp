@@ -2,7 +2,10 @@
 // property test of thousands of random edits with validate() after each one.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
@@ -188,6 +191,47 @@ TEST(SurfaceMesh, CopyIsDeepAndPropertiesFollowGarbageCollection) {
   auto copied_tag = copy.get_vertex_property<int>("v:tag");
   ASSERT_TRUE(copied_tag.is_valid());
   EXPECT_EQ(copied_tag[Vertex(0)], 0);
+}
+
+// A sculpting stroke adds its arrays (remesher sizing, flags) to a loaded mesh and then splits
+// edges: neither the mesh's arrays nor the added ones may be reallocated (copied) by the first
+// splits, and all of them keep the values they had.
+TEST(SurfaceMesh, ArraysHaveRoomForTheFirstSplitsOfAStroke) {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const SurfaceMesh sphere = make_icosphere(3);
+  for (Vertex v : sphere.vertices()) points.push_back({sphere.position(v).x, sphere.position(v).y, sphere.position(v).z});
+  for (mesh::Face f : sphere.faces()) {
+    Vertex c[3];
+    sphere.face_vertices(f, c);
+    triangles.push_back({c[0].idx, c[1].idx, c[2].idx});
+  }
+  SurfaceMesh m = build_from_triangles(points, triangles);
+  auto sizing = m.add_vertex_property<double>("test:sizing", 0.5);
+  auto flags = m.add_edge_property<std::uint8_t>("test:flag", 1);
+  const Point* positions_before = m.positions().data();
+  const double* sizing_before = &sizing[Vertex(0)];
+  const std::uint8_t* flags_before = &flags[mesh::Edge(0)];
+  const size_t splits = m.n_faces() / 20;  // within the eighth more build_from_triangles leaves
+  for (size_t i = 0; i < splits; ++i) {
+    const mesh::Edge e(static_cast<mesh::Index>(i * 7 % m.edges_size()));
+    m.split(e, 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))));
+  }
+  m.validate();
+  EXPECT_EQ(m.positions().data(), positions_before);
+  EXPECT_EQ(&sizing[Vertex(0)], sizing_before);
+  EXPECT_EQ(&flags[mesh::Edge(0)], flags_before);
+  EXPECT_EQ(sizing[Vertex(0)], 0.5);
+  EXPECT_EQ(sizing[Vertex(static_cast<mesh::Index>(m.vertices_size() - 1))], 0.5);
+  // Past the room, everything grows together and keeps its values.
+  const size_t more = m.n_faces();
+  for (size_t i = 0; i < more; ++i) {
+    const mesh::Edge e(static_cast<mesh::Index>(3 * i % m.edges_size()));
+    m.split(e, 0.5 * (m.position(m.vertex(e, 0)) + m.position(m.vertex(e, 1))));
+  }
+  m.validate();
+  EXPECT_EQ(sizing[Vertex(0)], 0.5);
+  EXPECT_EQ(flags[mesh::Edge(static_cast<mesh::Index>(m.edges_size() - 1))], 1);
 }
 
 // The property test the foundation rests on: random splits, collapses and flips on a sphere
