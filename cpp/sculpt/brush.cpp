@@ -43,8 +43,8 @@ mesh::Vertex locate(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_sur
   const mesh::Index n_vertices = static_cast<mesh::Index>(mesh.vertices_size());
   for (mesh::Index i = 0; i < n_vertices; ++i) {
     if (vdel[i] || !vh[i].is_valid()) continue;  // an isolated vertex is not on the surface
-    const Vec3 d = pos[i] - p;
-    bound = std::min(bound, glm::dot(d, d));
+    const double dx = pos[i].x - p.x, dy = pos[i].y - p.y, dz = pos[i].z - p.z;
+    bound = std::min(bound, dx * dx + dy * dy + dz * dz);
   }
   if (!std::isfinite(bound)) throw std::invalid_argument("brush: the mesh has no face");
 
@@ -59,14 +59,20 @@ mesh::Vertex locate(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_sur
   for (mesh::Index f = 0; f < n_faces; ++f) {
     if (fdel[f]) continue;
     const auto& c0 = hc[fh[f].idx];
-    const auto& c1 = hc[c0.next.idx];
-    const mesh::Index c[3] = {c0.to.idx, c1.to.idx, hc[c1.next.idx].to.idx};
+    // next and prev are both stored: two independent loads rather than a chain of two.
+    const mesh::Index c[3] = {c0.to.idx, hc[c0.next.idx].to.idx, hc[c0.prev.idx].to.idx};
     const Point& a = pos[c[0]];
     const Point& b = pos[c[1]];
     const Point& d = pos[c[2]];
-    const Vec3 lo = glm::min(glm::min(a, b), d), hi = glm::max(glm::max(a, b), d);
-    const Vec3 out = glm::max(glm::max(lo - p, p - hi), Vec3(0.0));
-    if (glm::dot(out, out) > best_d2) continue;  // the face's box is already farther
+    // The distance from p to the face's box, an axis at a time (scalar code: glm's vector
+    // min/max made this loop five times slower in WebAssembly than natively).
+    double box_d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double lo = std::min(std::min(a[k], b[k]), d[k]), hi = std::max(std::max(a[k], b[k]), d[k]);
+      const double out = lo > p[k] ? lo - p[k] : p[k] > hi ? p[k] - hi : 0.0;
+      box_d2 += out * out;
+    }
+    if (box_d2 > best_d2) continue;  // the face's box is already farther
     double bary[3];
     const Point q = geometry::closest_point_on_triangle(p, a, b, d, bary);
     const double d2 = glm::dot(q - p, q - p);
