@@ -88,13 +88,7 @@ void Remesher::Impl::mark_features() {
   // classify_vertex for every vertex, from feature edges counted at their ends: sequential passes
   // instead of a walk around every fan, which was most of a sculpting stroke's set-up (1.4 ms of
   // WebAssembly on the 35k-vertex bunny, a closed mesh without a single feature edge).
-  std::vector<std::uint8_t> count(mesh.vertices_size(), 0);
-  for (Edge e : mesh.edges())
-    if (is_feature(e))
-      for (unsigned i = 0; i < 2; ++i) {
-        std::uint8_t& c = count[mesh.vertex(e, i).idx];
-        c = static_cast<std::uint8_t>(std::min(c + 1, 3));
-      }
+  const std::vector<std::uint8_t> count = feature_edges_per_vertex();
   for (Vertex v : mesh.vertices()) {
     const std::uint8_t n = count[v.idx];
     vclass[v] = n == 0 ? kFree : n == 2 ? kFeatureLine : kCorner;
@@ -107,7 +101,7 @@ void Remesher::Impl::mark_features() {
 // 7/162/12-degree face whose edges are all "sharp" only against it). Kept, they pin corners
 // around edges far shorter than the target length, or make a closed three-edge line that
 // relaxation shrinks to a point: rocker_arm --features 45 kept 5-degree triangles there.
-void Remesher::Impl::drop_isolated_features() {
+std::vector<std::uint8_t> Remesher::Impl::feature_edges_per_vertex() const {
   std::vector<std::uint8_t> count(mesh.vertices_size(), 0);
   for (Edge e : mesh.edges())
     if (is_feature(e))
@@ -115,6 +109,11 @@ void Remesher::Impl::drop_isolated_features() {
         std::uint8_t& c = count[mesh.vertex(e, i).idx];
         c = static_cast<std::uint8_t>(std::min(c + 1, 255));
       }
+  return count;
+}
+
+void Remesher::Impl::drop_isolated_features() {
+  const std::vector<std::uint8_t> count = feature_edges_per_vertex();
   auto interior_feature = [&](Edge e) { return is_feature(e) && !mesh.is_boundary(e); };
   for (Edge e : mesh.edges())
     if (interior_feature(e) && count[mesh.vertex(e, 0).idx] == 1 && count[mesh.vertex(e, 1).idx] == 1) feature[e] = 0;

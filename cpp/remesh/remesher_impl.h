@@ -125,6 +125,7 @@ struct Remesher::Impl {
   void build_reference();
   void mark_features();
   void drop_isolated_features();
+  std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   // min_length == max_length (a constant detail, as the brush comparison and some sculptors use):

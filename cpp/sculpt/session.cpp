@@ -184,13 +184,21 @@ struct Session::Impl {
       undo.pop_front();
     }
   }
+  bool garbage_is_large() const {
+    return 8 * (mesh.faces_size() - mesh.n_faces()) > mesh.faces_size() ||
+           8 * (mesh.vertices_size() - mesh.n_vertices()) > mesh.vertices_size();
+  }
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
     if (!grabbing && !brushing) return;
     if (grabbing) deformer.end();
     grabbing = brushing = false;
     remesher.reset();
-    if (mesh.has_garbage()) {
+    // Deleted slots are compacted once they are an eighth of the faces' or vertices' slots, not
+    // after every stroke: compaction renumbers the whole mesh (linear in its size, and the viewer
+    // uploads every buffer again), which took a seventh of a stroke's time on the 35k-vertex
+    // bunny; every reader skips deleted slots (the render buffers draw them as empty triangles).
+    if (garbage_is_large()) {
       mesh.garbage_collection();  // renumbers: readers must start over
       mesh_replaced();
     }
@@ -382,6 +390,7 @@ bool Session::undo() {
   s.undo.pop_back();
   s.redo.emplace_back(std::move(s.mesh));
   s.mesh = std::move(m);
+  s.mesh.garbage_collection();  // a stroke may have left deleted slots; the buffers start over anyway
   s.mesh_replaced();
   return true;
 }
@@ -395,6 +404,7 @@ bool Session::redo() {
   s.undo.emplace_back(std::move(s.mesh));
   s.undo_bytes += s.undo.back().bytes();
   s.mesh = std::move(m);
+  s.mesh.garbage_collection();  // as in undo()
   s.mesh_replaced();
   return true;
 }

@@ -320,6 +320,17 @@ export const TOOLS = {
 // ---------------------------------------------------------------------------------------------
 // adasculpt side: Session.replay of {"brush": ...} steps
 
+// The render buffers keep a slot for every face, deleted ones drawn as (0, 0, 0) until the core
+// compacts the mesh (not after every stroke): the metrics read only the live triangles.
+function liveTriangles(indices) {
+  const out = [];
+  for (let f = 0; f < indices.length; f += 3) {
+    const a = indices[f], b = indices[f + 1], c = indices[f + 2];
+    if (a !== b && b !== c && a !== c) out.push(a, b, c);
+  }
+  return Uint32Array.from(out);
+}
+
 // `strokes`: [{tool, stroke}] applied in order on one fresh copy of `mesh`. `length`: the uniform
 // target edge length (min_length = max_length), absolute. Returns the final mesh, the wall time
 // of the replay call per stamp (minus an empty replay's: settings and JSON) and the core's
@@ -349,7 +360,7 @@ export function runOurs(M, mesh, strokes, { length, epsilon }) {
     const rep = JSON.parse(s.replay(full));
     const ms = performance.now() - t0 - emptyMs;
     return {
-      mesh: { positions: Float64Array.from(s.positions()), indices: Uint32Array.from(s.indices()) },
+      mesh: { positions: Float64Array.from(s.positions()), indices: liveTriangles(s.indices()) },
       stamps,
       msPerStamp: ms / stamps,
       stampMedian: rep.frame_ms_median,

@@ -311,6 +311,34 @@ TEST(SculptBrush, IncrementalStampsEqualTheWholeStroke) {
   EXPECT_TRUE(same_mesh(a.mesh(), b.mesh()));
 }
 
+// A stroke's end compacts the mesh only once deleted slots are an eighth of the faces or vertices
+// (compaction renumbers everything and the viewer uploads the whole mesh again); until then the
+// change set keeps being incremental and every reader skips the deleted slots.
+TEST(SculptBrush, StrokeEndsCompactOnlyWhenDeletedSlotsAddUp) {
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(4));
+  // Coarser than the sphere's edges: each stroke collapses edges, leaving deleted slots.
+  s.set_settings({{"min_length", "3%"}, {"max_length", "3%"}});
+  int kept = 0, compacted = 0;
+  for (int k = 0; k < 24; ++k) {
+    s.clear_changes();
+    const double offset = -0.6 + 0.05 * k;
+    s.brush_stroke(stroke(k % 2 ? BrushTool::Smooth : BrushTool::Draw, arc(offset, offset + 0.3, 0.3 * k), 0.3, 0.5));
+    const mesh::SurfaceMesh& m = s.mesh();
+    m.validate();
+    EXPECT_LE(8 * (m.faces_size() - m.n_faces()), m.faces_size()) << "stroke " << k;
+    EXPECT_LE(8 * (m.vertices_size() - m.n_vertices()), m.vertices_size()) << "stroke " << k;
+    if (m.has_garbage()) {
+      ++kept;
+      EXPECT_FALSE(s.changes().everything) << "stroke " << k << " kept its deleted slots: no renumbering";
+    } else {
+      ++compacted;
+    }
+  }
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(compacted, 0);
+}
+
 TEST(SculptBrush, UndoRedoAreExact) {
   sculpt::Session s;
   s.load(mesh::make_icosphere(3));
