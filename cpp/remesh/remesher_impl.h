@@ -107,6 +107,7 @@ struct Remesher::Impl {
   // face_run and kappa_known is all zero, whoever used them last.
   std::vector<Vertex> scope_vertices;
   std::vector<Edge> scope_edges;
+  bool scope_edges_complete = false;  // scope_edges is every edge of the scope (gather_scope_edges)
   std::vector<mesh::Face> faces_scratch;
   std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
   std::vector<std::uint32_t> face_seen;  // per face slot: == face_run when face_quality is current

@@ -34,6 +34,7 @@ constexpr double kMidpointCollapseRatio = 0.25;
 
 void Remesher::Impl::gather_scope_edges() {
   scope_edges.clear();
+  scope_edges_complete = true;
   if (whole_mesh) {
     for (Edge e : mesh.edges()) scope_edges.push_back(e);
     return;
@@ -169,6 +170,7 @@ size_t Remesher::Impl::split_long_edges() {
     }
     // Only edges at the new vertices can still be too long: the others were not touched.
     scope_edges.clear();
+    scope_edges_complete = false;
     for (size_t i = first_new; i < scope_vertices.size(); ++i)
       for (Halfedge h : mesh.halfedges(scope_vertices[i])) {
         Vertex w = mesh.to_vertex(h);
@@ -303,7 +305,9 @@ void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
 // Gathers the scope's edges once more (the splits added some); the flip passes after it reuse
 // the list, since neither collapses nor flips create edges.
 size_t Remesher::Impl::collapse_short_edges() {
-  gather_scope_edges();
+  // Unless the split pass found nothing to split, in which case its list is still every edge of
+  // the scope, in the same order (most frames of a stroke over an already remeshed surface).
+  if (!scope_edges_complete) gather_scope_edges();
   candidates.clear();
   for (Edge e : scope_edges) {
     double limit = kCollapseFactor * target_length(e);
@@ -329,6 +333,7 @@ size_t Remesher::Impl::collapse_short_edges() {
     }
     collapses += collapse_with_mirror(h, midpoint);
   }
+  scope_edges_complete = false;  // the flips use the list as it is, the next split pass gathers again
   return collapses;
 }
 
