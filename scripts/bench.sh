@@ -9,6 +9,14 @@ bash scripts/setup.sh
 bash scripts/build.sh native
 ran=0
 if [ -x build/native/adasculpt_bench ]; then
+  # glibc hands freed blocks of a megabyte or more back to the kernel, so every repetition pays
+  # fresh page faults again (about 1,400 per fandisk remesh, some 20 ms on the 2-core VM this is
+  # developed on). The benchmark process keeps its freed memory instead, as a long-running app and
+  # the browser's wasm heap do; ADASCULPT_BENCH_MALLOC_DEFAULTS=1 measures with glibc's defaults.
+  if [ "${ADASCULPT_BENCH_MALLOC_DEFAULTS:-0}" != 1 ]; then
+    export GLIBC_TUNABLES=glibc.malloc.mmap_threshold=1073741824:glibc.malloc.trim_threshold=1073741824
+    echo "=== freed memory kept in the process (ADASCULPT_BENCH_MALLOC_DEFAULTS=1: glibc's defaults)"
+  fi
   echo "=== build/native/adasculpt_bench $*"
   build/native/adasculpt_bench "$@"
   ran=1

@@ -3,8 +3,7 @@
 // every sculpting frame. The mesh grows by a few elements per frame; resizing such an array to the
 // exact new size made std::vector reallocate and copy it on the next frame's growth, and a fresh
 // array sized exactly at a stroke's start did so on its second stamp (3.5 ms for the brush's five
-// arrays on the 35k-vertex bunny). Growing by half again keeps them in step with the mesh's own
-// arrays (PropertyContainer::push_back).
+// arrays on the 35k-vertex bunny). Growing by half again leaves room for many frames' growth.
 #include <cstddef>
 #include <vector>
 
