@@ -3,6 +3,8 @@
 // session files carry strokes.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +18,7 @@
 #include "geometry/mirror_symmetry.h"
 #include "geometry/quality.h"
 #include "geometry/topology.h"
+#include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
 #include "sculpt/session_file.h"
@@ -337,6 +340,47 @@ TEST(SculptBrush, StrokeEndsCompactOnlyWhenDeletedSlotsAddUp) {
   }
   EXPECT_GT(kept, 0);
   EXPECT_GT(compacted, 0);
+}
+
+// Two parallel sheets 0.002 apart, the upper one's grid shifted by half a cell: a stroke starting
+// on the lower sheet at a cell's centre has its nearest vertex on the upper sheet. The stroke's
+// start must still be found on the lower sheet (the exact face scan, not the nearest vertex's fan).
+TEST(SculptBrush, AStrokeStartsOnTheSheetItTouches) {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const int n = 10;
+  const double cell = 0.1;
+  for (int sheet = 0; sheet < 2; ++sheet) {
+    const std::uint32_t base = std::uint32_t(points.size());
+    const double shift = sheet ? 0.5 * cell : 0.0, z = sheet ? 0.002 : 0.0;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) points.push_back({shift + i * cell, shift + j * cell, z});
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::uint32_t a = base + std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + n + 1, d = c + 1;
+        triangles.push_back({a, b, d});
+        triangles.push_back({a, d, c});
+      }
+  }
+  sculpt::Session s;
+  s.load(mesh::build_from_triangles(points, triangles));
+  s.set_settings({{"min_length", "7%"}, {"max_length", "7%"}});  // about the grid's cell
+  const Point start(0.45, 0.45, 0.0);  // lower sheet, centre of a cell; an upper vertex right above
+  s.brush_stroke(stroke(BrushTool::Draw, {start}, 0.12, 1.0));
+  s.mesh().validate();
+  // The lower sheet's vertices come first (build_from_triangles keeps the order; the remesher
+  // appends new vertices, all on the brushed sheet).
+  const mesh::Index lower_sheet = mesh::Index((n + 1) * (n + 1)), upper_end = 2 * lower_sheet;
+  double lower_moved = 0, upper_moved = 0;
+  for (Vertex v : s.mesh().vertices()) {
+    const Point& q = s.mesh().position(v);
+    if (v.idx >= lower_sheet && v.idx < upper_end)
+      upper_moved = std::max(upper_moved, glm::length(q - Point(points[v.idx][0], points[v.idx][1], points[v.idx][2])));
+    else
+      lower_moved = std::max(lower_moved, q.z);
+  }
+  EXPECT_GT(lower_moved, 1e-4) << "the lower sheet, where the stroke starts, moves";
+  EXPECT_EQ(upper_moved, 0.0) << "the upper sheet is not touched";
 }
 
 TEST(SculptBrush, UndoRedoAreExact) {
