@@ -6,7 +6,8 @@
 //
 // Nothing global happens per stamp: the stamp's vertex is found by walking from the previous
 // stamp's vertex (only the first stamp of a stroke scans the surface's faces), and the mesh is
-// not garbage-collected until the stroke ends (the Session does that).
+// not garbage-collected during the stroke (the Session compacts it afterwards when deleted slots
+// add up).
 #include <vector>
 
 #include "deform/brushes.h"

@@ -5,12 +5,14 @@
 //
 // Undo model: every grab (grab_begin .. grab_end), every brush stroke (brush_begin .. brush_end)
 // and every whole-mesh remesh() is one undo step.
-// A step snapshots the mesh when it starts (a deep copy of the SurfaceMesh, compacted first), so
-// undo restores positions bit for bit and the exact connectivity. The history is bounded
+// A step snapshots the mesh when it starts (a deep copy of the SurfaceMesh), so undo restores
+// positions bit for bit and the exact connectivity (compacted: undo and redo garbage-collect). The history is bounded
 // (kMaxUndoSteps steps and kMaxUndoBytes bytes of snapshots; the oldest steps are dropped first).
 //
-// During a grab or a stroke the mesh is never garbage-collected: it may contain deleted slots, and
-// readers must skip them (mesh().is_deleted(...)). grab_end() and brush_end() compact it.
+// The mesh may contain deleted slots, and readers must skip them (mesh().is_deleted(...)): it is
+// never garbage-collected during a grab or a stroke, and grab_end() and brush_end() compact it only
+// once deleted slots are an eighth of the faces' or vertices' slots (compaction renumbers the whole
+// mesh, and changes() then reports everything).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -80,7 +82,7 @@ class Session {
   // One frame: `total` is the transform since grab_begin. ROI + field, refinement, deformation
   // by the increment since the last frame, one remeshing iteration on the ROI plus a ring.
   void grab_drag(const deform::HandleTransform& total);
-  // Ends the grab: compacts the mesh; the grab becomes one undo step.
+  // Ends the grab (one undo step); compacts the mesh when deleted slots add up (see above).
   void grab_end();
   bool grabbing() const;
 
@@ -88,7 +90,7 @@ class Session {
   // step; throws std::invalid_argument on bad settings or without a mesh. Each brush_stamp is one
   // pointer sample (a surface point, or for grab the pointer position in space); it runs the
   // stamps due since the previous sample, each followed by one remeshing iteration on the
-  // brushed vertices plus a ring. brush_end compacts the mesh.
+  // brushed vertices plus a ring. brush_end ends the stroke as grab_end ends a grab.
   void brush_begin(const deform::BrushSettings& settings);
   void brush_stamp(const Point& p, double pressure = 1);
   void brush_end();
