@@ -205,6 +205,14 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
 
 void Remesher::Impl::relax_vertices() {
   new_positions.resize(scope_vertices.size());
+  mesh::resize_scratch(relax_faces, mesh.faces_size());
+  mesh::resize_scratch(face_seen, mesh.faces_size(), 0u);
+  if (++face_run == 0) {
+    std::fill(face_seen.begin(), face_seen.end(), 0);
+    face_run = 1;
+  }
+  std::uint32_t* seen = face_seen.data();
+  const Halfedge* fh = mesh.face_halfedge_data();
   // Flat arrays: nothing is added to the mesh until the positions are written back.
   const auto* hc = mesh.halfedge_connectivity_data();
   const Halfedge* vh = mesh.vertex_halfedge_data();
@@ -238,27 +246,30 @@ void Remesher::Impl::relax_vertices() {
       new_positions[i] = p + t * (glm::dot(c - p, t) / tl);
       continue;
     }
-    // Equation 6: triangle barycentres weighted by area x sizing at the barycentre.
+    // Equation 6: triangle barycentres weighted by area x sizing at the barycentre. Each face's
+    // terms are computed once per call, from its own corners, and shared by its corners (they
+    // were computed once per corner: a fifth of a sculpting frame's instructions).
     Vec3 normal(0.0);
     Point c(0.0);
     double weight = 0;
-    const double size_v = siz[v.idx];
     const Halfedge start = vh[v.idx];
     if (start.is_valid()) {
       Halfedge h = start;
       do {
-        const auto& ch = hc[h.idx];
-        if (ch.face.is_valid()) {
-          const Index w1 = ch.to.idx, w2 = hc[ch.next.idx].to.idx;
-          const Point& p1 = pos[w1];
-          const Point& p2 = pos[w2];
-          Vec3 n = glm::cross(p1 - p, p2 - p);
-          double area = 0.5 * glm::length(n);
-          double size = (size_v + siz[w1] + siz[w2]) / 3.0;
-          double w = area * size;
-          normal += n;
-          c += w * (p + p1 + p2) / 3.0;
-          weight += w;
+        const mesh::Face f = hc[h.idx].face;
+        if (f.is_valid()) {
+          RelaxFace& t = relax_faces[f.idx];
+          if (seen[f.idx] != face_run) {
+            seen[f.idx] = face_run;
+            const auto& c0 = hc[fh[f.idx].idx];
+            const Index a = c0.to.idx, b = hc[c0.next.idx].to.idx, d = hc[c0.prev.idx].to.idx;
+            t.normal = glm::cross(pos[b] - pos[a], pos[d] - pos[a]);
+            t.weight = 0.5 * glm::length(t.normal) * ((siz[a] + siz[b] + siz[d]) / 3.0);
+            t.weighted_centre = t.weight * (pos[a] + pos[b] + pos[d]) / 3.0;
+          }
+          normal += t.normal;
+          c += t.weighted_centre;
+          weight += t.weight;
         }
         h = hc[h.idx ^ 1u].next;
       } while (h != start);

@@ -35,6 +35,7 @@ struct ScratchPool {
   std::vector<std::pair<double, Edge>> candidates;
   std::vector<int> valence, valence_excess;
   std::vector<Point> new_positions;
+  std::vector<RelaxFace> relax_faces;
   std::vector<double> kappa;
   std::vector<std::uint8_t> kappa_known;
 };
@@ -53,6 +54,7 @@ void Remesher::Impl::swap_scratch_with_pool() {
   pool.valence.swap(valence);
   pool.valence_excess.swap(valence_excess);
   pool.new_positions.swap(new_positions);
+  pool.relax_faces.swap(relax_faces);
   pool.kappa.swap(kappa);
   pool.kappa_known.swap(kappa_known);
 }

@@ -57,6 +57,13 @@ inline double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
   return others > 0 ? twice_area_sq / others : 0.0;
 }
 
+// One face's terms of the relaxation (equation 6), shared by its three corners.
+struct RelaxFace {
+  Vec3 normal;            // twice the area, along the normal
+  Point weighted_centre;  // weight x barycentre
+  double weight;          // area x mean sizing of the corners
+};
+
 struct Remesher::Impl {
   Impl(SurfaceMesh& m, const RemeshOptions& o);
   ~Impl();
@@ -116,6 +123,7 @@ struct Remesher::Impl {
   std::vector<int> valence;
   std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
   std::vector<Point> new_positions;
+  std::vector<RelaxFace> relax_faces;  // per face slot, during relax_vertices (where face_seen == face_run)
   std::vector<double> kappa;
   std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
   std::vector<std::uint32_t> neck_triangles;  // reference_cross_section: the triangles gathered
