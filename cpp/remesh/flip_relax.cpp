@@ -89,13 +89,7 @@ size_t Remesher::Impl::flip_edges() {
     // keep every vertex's boundary status).
     const Halfedge start = vh[v.idx];
     int n = 0;
-    if (start.is_valid()) {
-      Halfedge h = start;
-      do {
-        ++n;
-        h = hc[h.idx ^ 1u].next;
-      } while (h != start);
-    }
+    for_each_outgoing(hc, vh, v, [&](Halfedge) { ++n; });
     val[v.idx] = n;
     excess[v.idx] = n - (!start.is_valid() || !hc[start.idx].face.is_valid() ? 4 : 6);
   }
@@ -252,28 +246,22 @@ void Remesher::Impl::relax_vertices() {
     Vec3 normal(0.0);
     Point c(0.0);
     double weight = 0;
-    const Halfedge start = vh[v.idx];
-    if (start.is_valid()) {
-      Halfedge h = start;
-      do {
-        const mesh::Face f = hc[h.idx].face;
-        if (f.is_valid()) {
-          RelaxFace& t = relax_faces[f.idx];
-          if (seen[f.idx] != face_run) {
-            seen[f.idx] = face_run;
-            const auto& c0 = hc[fh[f.idx].idx];
-            const Index a = c0.to.idx, b = hc[c0.next.idx].to.idx, d = hc[c0.prev.idx].to.idx;
-            t.normal = glm::cross(pos[b] - pos[a], pos[d] - pos[a]);
-            t.weight = 0.5 * glm::length(t.normal) * ((siz[a] + siz[b] + siz[d]) / 3.0);
-            t.weighted_centre = t.weight * (pos[a] + pos[b] + pos[d]) / 3.0;
-          }
-          normal += t.normal;
-          c += t.weighted_centre;
-          weight += t.weight;
-        }
-        h = hc[h.idx ^ 1u].next;
-      } while (h != start);
-    }
+    for_each_outgoing(hc, vh, v, [&](Halfedge h) {
+      const mesh::Face f = hc[h.idx].face;
+      if (!f.is_valid()) return;
+      RelaxFace& t = relax_faces[f.idx];
+      if (seen[f.idx] != face_run) {
+        seen[f.idx] = face_run;
+        const auto& c0 = hc[fh[f.idx].idx];
+        const Index a = c0.to.idx, b = hc[c0.next.idx].to.idx, d = hc[c0.prev.idx].to.idx;
+        t.normal = glm::cross(pos[b] - pos[a], pos[d] - pos[a]);
+        t.weight = 0.5 * glm::length(t.normal) * ((siz[a] + siz[b] + siz[d]) / 3.0);
+        t.weighted_centre = t.weight * (pos[a] + pos[b] + pos[d]) / 3.0;
+      }
+      normal += t.normal;
+      c += t.weighted_centre;
+      weight += t.weight;
+    });
     double nl = glm::length(normal);
     if (weight <= 0 || nl <= 0) continue;
     normal /= nl;
@@ -317,20 +305,16 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       const std::uint8_t* vdel = mesh.vertex_deleted_data();
       const std::uint8_t* sc = scope.vector().data();
       for (Vertex v : scope_vertices) {
-        const Halfedge start = vh[v.idx];
-        if (vdel[v.idx] || sc[v.idx] != kActive || !start.is_valid()) continue;
-        Halfedge h = start;
-        do {
+        if (vdel[v.idx] || sc[v.idx] != kActive) continue;
+        for_each_outgoing(hc, vh, v, [&](Halfedge h) {
           const auto& ch = hc[h.idx];
-          if (ch.face.is_valid()) {
-            const mesh::Index prev_corner = hc[ch.next.idx].to.idx;  // the corner before v
-            const mesh::Index next_corner = ch.to.idx;
-            const bool earlier = (sc[prev_corner] == kActive && prev_corner < v.idx) ||
-                                 (sc[next_corner] == kActive && next_corner < v.idx);
-            if (!earlier) faces_scratch.push_back(ch.face);
-          }
-          h = hc[h.idx ^ 1u].next;
-        } while (h != start);
+          if (!ch.face.is_valid()) return;
+          const mesh::Index prev_corner = hc[ch.next.idx].to.idx;  // the corner before v
+          const mesh::Index next_corner = ch.to.idx;
+          const bool earlier = (sc[prev_corner] == kActive && prev_corner < v.idx) ||
+                               (sc[next_corner] == kActive && next_corner < v.idx);
+          if (!earlier) faces_scratch.push_back(ch.face);
+        });
       }
     }
     const size_t n_visits = whole_mesh ? mesh.faces_size() : faces_scratch.size();

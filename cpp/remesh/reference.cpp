@@ -25,39 +25,10 @@ constexpr double kFarProjection = 0.25;
 
 namespace {
 // The scratch buffers of the last remesher destroyed on this thread, lent to the next one.
-struct ScratchPool {
-  std::vector<Vertex> scope_vertices;
-  std::vector<Edge> scope_edges;
-  std::vector<mesh::Face> faces_scratch;
-  std::vector<double> face_quality;
-  std::vector<std::uint32_t> face_seen;
-  std::uint32_t face_run = 0;
-  std::vector<std::pair<double, Edge>> candidates;
-  std::vector<int> valence, valence_excess;
-  std::vector<Point> new_positions;
-  std::vector<RelaxFace> relax_faces;
-  std::vector<double> kappa;
-  std::vector<std::uint8_t> kappa_known;
-};
-thread_local ScratchPool scratch_pool;
+thread_local RemeshScratch scratch_pool;
 }  // namespace
 
-void Remesher::Impl::swap_scratch_with_pool() {
-  ScratchPool& pool = scratch_pool;
-  pool.scope_vertices.swap(scope_vertices);
-  pool.scope_edges.swap(scope_edges);
-  pool.faces_scratch.swap(faces_scratch);
-  pool.face_quality.swap(face_quality);
-  pool.face_seen.swap(face_seen);
-  std::swap(pool.face_run, face_run);
-  pool.candidates.swap(candidates);
-  pool.valence.swap(valence);
-  pool.valence_excess.swap(valence_excess);
-  pool.new_positions.swap(new_positions);
-  pool.relax_faces.swap(relax_faces);
-  pool.kappa.swap(kappa);
-  pool.kappa_known.swap(kappa_known);
-}
+void Remesher::Impl::swap_scratch_with_pool() { std::swap(static_cast<RemeshScratch&>(*this), scratch_pool); }
 
 Remesher::Impl::~Impl() { swap_scratch_with_pool(); }
 
@@ -87,14 +58,11 @@ void Remesher::Impl::mark_features() {
     if (glm::dot(n0, n1) < cos_limit) feature[e] = 1;
   }
   if (cos_limit >= -1.0) drop_isolated_features();
-  // classify_vertex for every vertex, from feature edges counted at their ends: sequential passes
-  // instead of a walk around every fan, which was most of a sculpting stroke's set-up (1.4 ms of
-  // WebAssembly on the 35k-vertex bunny, a closed mesh without a single feature edge).
+  // Every vertex's class from feature edges counted at their ends: sequential passes instead of a
+  // walk around every fan, which was most of a sculpting stroke's set-up (1.4 ms of WebAssembly on
+  // the 35k-vertex bunny, a closed mesh without a single feature edge).
   const std::vector<std::uint8_t> count = feature_edges_per_vertex();
-  for (Vertex v : mesh.vertices()) {
-    const std::uint8_t n = count[v.idx];
-    vclass[v] = n == 0 ? kFree : n == 2 ? kFeatureLine : kCorner;
-  }
+  for (Vertex v : mesh.vertices()) vclass[v] = vertex_class(count[v.idx]);
 }
 
 // Sharp edges that belong to no feature line: a lone sharp edge whose ends have no other
@@ -127,12 +95,6 @@ void Remesher::Impl::drop_isolated_features() {
     if (isolated_loop)
       for (Halfedge g : h) feature[mesh.edge(g)] = 0;
   }
-}
-
-void Remesher::Impl::classify_vertex(Vertex v) {
-  int n = 0;
-  for (Halfedge h : mesh.halfedges(v)) n += is_feature(mesh.edge(h));
-  vclass[v] = n == 0 ? kFree : n == 2 ? kFeatureLine : kCorner;
 }
 
 // Sizing at vertices whose surface curvature is not meaningful (feature lines, corners, boundary):

@@ -94,38 +94,38 @@ IterationStats Remesher::iterate() {
   Impl& m = *impl_;
   if (m.reference_stale) {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
-    for (Vertex v : m.mesh.vertices()) m.scope[v] = kActive;
+    m.enter_whole_mesh();
     m.build_reference();
-    m.scope_vertices.clear();
-    for (Vertex v : m.mesh.vertices()) m.scope_vertices.push_back(v);
-    m.whole_mesh = true;
     m.fix_bad_faces(kDegenerateAngleDeg);
-    m.whole_mesh = false;
   }
-  m.scope_vertices.clear();
-  {
-    const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
-    std::uint8_t* scope = m.scope.vector().data();
-    const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
-    for (mesh::Index i = 0; i < n; ++i)
-      if (!deleted[i]) {
-        scope[i] = kActive;
-        m.scope_vertices.push_back(Vertex(i));
-      }
-  }
-  m.whole_mesh = true;
+  m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
   m.region_calls_since_sizing = 0;
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  m.whole_mesh = false;
-  {
-    const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
-    std::uint8_t* scope = m.scope.vector().data();
-    const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
-    for (mesh::Index i = 0; i < n; ++i)
-      if (!deleted[i]) scope[i] = kOutside;
-  }
+  m.leave_whole_mesh();
   return stats;
+}
+
+void Remesher::Impl::enter_whole_mesh() {
+  scope_vertices.clear();
+  const std::uint8_t* deleted = mesh.vertex_deleted_data();
+  std::uint8_t* sc = scope.vector().data();
+  const mesh::Index n = static_cast<mesh::Index>(mesh.vertices_size());
+  for (mesh::Index i = 0; i < n; ++i)
+    if (!deleted[i]) {
+      sc[i] = kActive;
+      scope_vertices.push_back(Vertex(i));
+    }
+  whole_mesh = true;
+}
+
+void Remesher::Impl::leave_whole_mesh() {
+  const std::uint8_t* deleted = mesh.vertex_deleted_data();
+  std::uint8_t* sc = scope.vector().data();
+  const mesh::Index n = static_cast<mesh::Index>(mesh.vertices_size());
+  for (mesh::Index i = 0; i < n; ++i)
+    if (!deleted[i]) sc[i] = kOutside;
+  whole_mesh = false;
 }
 
 IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
@@ -140,27 +140,22 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       m.scope_vertices.push_back(v);
     }
   // Vertices with a neighbour outside the region hold the border in place, and the feature
-  // classification may be stale where the deformation added vertices (classify_vertex): one walk
-  // around each fan on the flat arrays does both.
+  // classification may be stale where the deformation added vertices: one walk around each fan
+  // does both.
   {
     const auto* hc = m.mesh.halfedge_connectivity_data();
     const Halfedge* vh = m.mesh.vertex_halfedge_data();
     const std::uint8_t* feat = m.feature.vector().data();
     std::uint8_t* sc = m.scope.vector().data();
     for (Vertex v : m.scope_vertices) {
-      const Halfedge start = vh[v.idx];
       int features = 0;
       bool held = false;
-      if (start.is_valid()) {
-        Halfedge h = start;
-        do {
-          held = held || sc[hc[h.idx].to.idx] == kOutside;
-          features += feat[h.idx >> 1] != 0;
-          h = hc[h.idx ^ 1u].next;
-        } while (h != start);
-      }
+      for_each_outgoing(hc, vh, v, [&](Halfedge h) {
+        held = held || sc[hc[h.idx].to.idx] == kOutside;
+        features += feat[h.idx >> 1] != 0;
+      });
       if (held) sc[v.idx] = kHeld;
-      m.vclass[v] = features == 0 ? kFree : features == 2 ? kFeatureLine : kCorner;
+      m.vclass[v] = vertex_class(features);
     }
   }
   // The curvature of a surface being dragged changes little from one frame to the next: the
@@ -185,16 +180,9 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
 
 size_t Remesher::polish() {
   Impl& m = *impl_;
-  const std::uint8_t* deleted = m.mesh.vertex_deleted_data();
-  std::uint8_t* scope = m.scope.vector().data();
-  const mesh::Index n = static_cast<mesh::Index>(m.mesh.vertices_size());
-  for (mesh::Index i = 0; i < n; ++i)
-    if (!deleted[i]) scope[i] = kActive;
-  m.whole_mesh = true;
+  m.enter_whole_mesh();
   const size_t moved = m.place_sliver_vertices(kPlacedSliverAngleDeg, false);
-  m.whole_mesh = false;
-  for (mesh::Index i = 0; i < n; ++i)
-    if (!deleted[i]) scope[i] = kOutside;
+  m.leave_whole_mesh();
   return moved;
 }
 

@@ -25,6 +25,9 @@ enum VertexClass : std::uint8_t {
   kFeatureLine = 1, // exactly two feature/boundary edges: slides along them
   kCorner = 2,      // any other number of feature edges: never moves, never removed
 };
+inline VertexClass vertex_class(int feature_edges) {
+  return feature_edges == 0 ? kFree : feature_edges == 2 ? kFeatureLine : kCorner;
+}
 
 // What the current iteration may do to a vertex.
 enum Scope : std::uint8_t {
@@ -32,6 +35,19 @@ enum Scope : std::uint8_t {
   kActive = 1,   // may move, be removed, get new edges
   kHeld = 2,     // on the border of a region: keeps its position and stays
 };
+
+// Calls fn(h) for every outgoing halfedge h of v, in the order of mesh.halfedges(v), on the mesh's
+// flat connectivity arrays: the passes of a sculpting frame walk every fan of the region this way.
+template <class Fn>
+inline void for_each_outgoing(const SurfaceMesh::HalfedgeConnectivity* hc, const Halfedge* vh, Vertex v, Fn&& fn) {
+  const Halfedge start = vh[v.idx];
+  if (!start.is_valid()) return;
+  Halfedge h = start;
+  do {
+    fn(h);
+    h = hc[h.idx ^ 1u].next;
+  } while (h != start);
+}
 
 // Largest growth of the target edge length per unit distance (see limit_sizing_gradation).
 // 0.2 measured best on the shared meshes: 0.4 leaves 22-24 degree minimum angles and 0.25 a mean
@@ -64,12 +80,36 @@ struct RelaxFace {
   double weight;          // area x mean sizing of the corners
 };
 
-struct Remesher::Impl {
+// The per-frame passes' scratch buffers. They outlive the remesher (reference.cpp: the last
+// remesher destroyed on a thread lends them to the next one): a sculpting session makes one
+// remesher per stroke, and allocating and zero-filling the per-slot arrays again cost each
+// stroke's first stamp about 3 ms of WebAssembly on the 35k-vertex bunny. Between uses face_seen
+// holds no value above face_run and kappa_known is all zero, whoever used them last.
+struct RemeshScratch {
+  std::vector<Vertex> scope_vertices;
+  std::vector<Edge> scope_edges;
+  std::vector<mesh::Face> faces_scratch;
+  std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
+  std::vector<std::uint32_t> face_seen;  // per face slot: == face_run when face_quality is current
+  std::uint32_t face_run = 0;
+  std::vector<std::pair<double, Edge>> candidates;
+  std::vector<int> valence;
+  std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
+  std::vector<Point> new_positions;
+  std::vector<RelaxFace> relax_faces;  // per face slot, during relax_vertices (where face_seen == face_run)
+  std::vector<double> kappa;
+  std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
+};
+
+struct Remesher::Impl : RemeshScratch {
   Impl(SurfaceMesh& m, const RemeshOptions& o);
   ~Impl();
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
-  void swap_scratch_with_pool();  // see the scratch buffers below
+  void swap_scratch_with_pool();  // see RemeshScratch
+  // Whole-mesh passes: every live vertex active and in scope_vertices; and back to none.
+  void enter_whole_mesh();
+  void leave_whole_mesh();
 
   SurfaceMesh& mesh;
   RemeshOptions opt;
@@ -107,25 +147,9 @@ struct Remesher::Impl {
   VertexProperty<std::uint32_t> segment_hint;  // last reference feature segment (feature vertices)
   EdgeProperty<std::uint8_t> feature;      // feature or boundary edge
 
-  // Scratch buffers, reused so iterations do not allocate once warmed up. They also outlive the
-  // remesher (reference.cpp, ScratchPool): a sculpting session makes one remesher per stroke, and
-  // allocating and zero-filling the per-slot arrays again cost each stroke's first stamp about
-  // 3 ms of WebAssembly on the 35k-vertex bunny. Between uses face_seen holds no value above
-  // face_run and kappa_known is all zero, whoever used them last.
-  std::vector<Vertex> scope_vertices;
-  std::vector<Edge> scope_edges;
+  // Scratch buffers, reused so iterations do not allocate once warmed up (and those of
+  // RemeshScratch outlive the remesher).
   bool scope_edges_complete = false;  // scope_edges is every edge of the scope (gather_scope_edges)
-  std::vector<mesh::Face> faces_scratch;
-  std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
-  std::vector<std::uint32_t> face_seen;  // per face slot: == face_run when face_quality is current
-  std::uint32_t face_run = 0;
-  std::vector<std::pair<double, Edge>> candidates;
-  std::vector<int> valence;
-  std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
-  std::vector<Point> new_positions;
-  std::vector<RelaxFace> relax_faces;  // per face slot, during relax_vertices (where face_seen == face_run)
-  std::vector<double> kappa;
-  std::vector<std::uint8_t> kappa_known;  // region mode: vertices whose kappa was computed
   std::vector<std::uint32_t> neck_triangles;  // reference_cross_section: the triangles gathered
   std::vector<std::uint32_t> neck_stamp;      // per reference triangle: == neck_run when gathered
   std::uint32_t neck_run = 0;
@@ -135,7 +159,6 @@ struct Remesher::Impl {
   void mark_features();
   void drop_isolated_features();
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
-  void classify_vertex(Vertex v);
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   // min_length == max_length (a constant detail, as the brush comparison and some sculptors use):
   // the clamp gives every free vertex that length whatever its curvature, so none is measured.

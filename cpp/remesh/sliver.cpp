@@ -10,6 +10,7 @@
 // it, each candidate projected onto the reference, finds it. Nothing else is changed: no
 // connectivity (so never the topology), and no vertex whose fan would get worse.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -213,7 +214,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
       std::uint32_t hint;
       double sizing;
     };
-    std::vector<Candidate> tried(10);
+    std::array<Candidate, 10> tried;  // the eight tangent steps and the two along the normal
     Point best_p = start;
     std::uint32_t best_hint = start_hint;
     double best_sizing = start_sizing;

@@ -39,22 +39,19 @@ void Remesher::Impl::gather_scope_edges() {
     for (Edge e : mesh.edges()) scope_edges.push_back(e);
     return;
   }
-  // The fans walked on the flat arrays, in the order of mesh.halfedges(v): two calls per
-  // sculpting frame, over every edge of the region.
+  // The fans walked on the flat arrays (for_each_outgoing): two calls per sculpting frame, over
+  // every edge of the region.
   const auto* hc = mesh.halfedge_connectivity_data();
   const Halfedge* vh = mesh.vertex_halfedge_data();
   const std::uint8_t* vdel = mesh.vertex_deleted_data();
   const std::uint8_t* sc = scope.vector().data();
   for (Vertex v : scope_vertices) {
-    const Halfedge start = vh[v.idx];
-    if (vdel[v.idx] || !start.is_valid()) continue;
-    Halfedge h = start;
-    do {
+    if (vdel[v.idx]) continue;
+    for_each_outgoing(hc, vh, v, [&](Halfedge h) {
       // Each edge once, from its lower-index end; none to a vertex outside the scope.
       const mesh::Index w = hc[h.idx].to.idx;
       if (sc[w] != kOutside && v.idx < w) scope_edges.push_back(SurfaceMesh::edge(h));
-      h = hc[h.idx ^ 1u].next;
-    } while (h != start);
+    });
   }
 }
 

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "mesh/surface_mesh.h"
@@ -197,16 +198,8 @@ TEST(SurfaceMesh, CopyIsDeepAndPropertiesFollowGarbageCollection) {
 // edges: neither the mesh's arrays nor the added ones may be reallocated (copied) by the first
 // splits, and all of them keep the values they had.
 TEST(SurfaceMesh, ArraysHaveRoomForTheFirstSplitsOfAStroke) {
-  std::vector<std::array<double, 3>> points;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  const SurfaceMesh sphere = make_icosphere(3);
-  for (Vertex v : sphere.vertices()) points.push_back({sphere.position(v).x, sphere.position(v).y, sphere.position(v).z});
-  for (mesh::Face f : sphere.faces()) {
-    Vertex c[3];
-    sphere.face_vertices(f, c);
-    triangles.push_back({c[0].idx, c[1].idx, c[2].idx});
-  }
-  SurfaceMesh m = build_from_triangles(points, triangles);
+  const io::PolygonSoup soup = io::soup_from_mesh(make_icosphere(3));
+  SurfaceMesh m = build_from_triangles(soup.points, soup.triangles);
   auto sizing = m.add_vertex_property<double>("test:sizing", 0.5);
   auto flags = m.add_edge_property<std::uint8_t>("test:flag", 1);
   const Point* positions_before = m.positions().data();
