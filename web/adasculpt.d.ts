@@ -220,7 +220,10 @@ export interface SculptApp {
   readonly autosave: Autosave;
   /** The Emscripten module instance of this app (advanced use). */
   readonly module: unknown;
-  /** The embind `Session` of this app (advanced use; deleted by `dispose`). */
+  /** The embind `Session` of this app (advanced use; deleted by `dispose`). Its `positions()`/`indices()` are
+   * the render buffers, one entry per vertex/face slot: faces deleted by remeshing stay as (0, 0, 0) triangles
+   * until the core compacts the mesh (at the end of a grab or stroke once deleted slots are an eighth, and on
+   * load, remesh, undo and redo). `export` and `stats` give the compacted mesh. */
   readonly session: unknown;
 }
 
