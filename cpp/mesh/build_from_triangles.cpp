@@ -66,7 +66,7 @@ SurfaceMesh build_from_triangles(const std::vector<std::array<double, 3>>& point
     size_t n_used = std::count(used.begin(), used.end(), 1);
     report.unreferenced_vertices = n_points - n_used;
     // An eighth more of every element: the first sculpting strokes add some without copying
-    // the arrays (SurfaceMesh grows them by half when full).
+    // the arrays (as SurfaceMesh::reserve_room_for_edits).
     const size_t edges = faces.size() * 3 / 2 + 16;
     mesh.reserve(n_used + n_used / 8, edges + edges / 8, faces.size() + faces.size() / 8);
     for (std::uint32_t i = 0; i < n_points; ++i)

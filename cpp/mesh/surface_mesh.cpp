@@ -397,6 +397,11 @@ void SurfaceMesh::flip(Edge e) {
   if (halfedge(b) == o) set_halfedge(b, hn);
 }
 
+void SurfaceMesh::reserve_room_for_edits() {
+  auto room = [](size_t n) { return n + n / 8 + 16; };
+  reserve(room(vertices_size()), room(edges_size()), room(faces_size()));
+}
+
 void SurfaceMesh::garbage_collection() {
   if (!has_garbage()) return;
   const size_t nv = vertices_size(), ne = edges_size(), nf = faces_size();

@@ -40,6 +40,10 @@ class SurfaceMesh {
   bool has_garbage() const { return deleted_vertices_ + deleted_edges_ + deleted_faces_ > 0; }
   void clear();
   void reserve(size_t vertices, size_t edges, size_t faces);
+  // Room for an eighth more of every element than the arrays hold: the first strokes on a mesh
+  // just restored from history (a copy, whose arrays are exactly full) then add elements without
+  // copying every array in the middle of a frame.
+  void reserve_room_for_edits();
 
   // ---- low-level construction (used by the soup builder and by edits)
   Vertex add_vertex(const Point& p);

@@ -157,6 +157,7 @@ struct Remesher::Impl : RemeshScratch {
   // ---- set-up (reference.cpp)
   void build_reference();
   void mark_features();
+  void mark_boundary_edges();  // mark_features with features off
   void drop_isolated_features();
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);

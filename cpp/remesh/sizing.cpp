@@ -24,10 +24,13 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
   // a field that is already graded (most of a sculpting frame's region) the queue stays small.
   using Item = std::pair<double, mesh::Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  // A neighbour w can only be lowered by a smaller value (the bound adds a non-negative length), so
+  // the length is measured only then: on a uniform field (min_length == max_length) no square
+  // root is taken, and the seeding was a tenth of a brush stamp's instructions.
   for (mesh::Vertex v : vertices) {
     const double value = sizing[v];
     for (mesh::Vertex w : mesh.vertices(v)) {
-      if (inside && !(*inside)[w.idx]) continue;
+      if (!(value < sizing[w]) || (inside && !(*inside)[w.idx])) continue;
       if (value + gradation * glm::length(mesh.position(w) - mesh.position(v)) < sizing[w]) {
         queue.push({value, v.idx});
         break;
@@ -40,7 +43,7 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
     mesh::Vertex v(idx);
     if (value > sizing[v]) continue;  // stale entry
     for (mesh::Vertex w : mesh.vertices(v)) {
-      if (inside && !(*inside)[w.idx]) continue;
+      if (!(value < sizing[w]) || (inside && !(*inside)[w.idx])) continue;
       double bound = value + gradation * glm::length(mesh.position(w) - mesh.position(v));
       if (bound < sizing[w]) {
         sizing[w] = bound;

@@ -160,6 +160,7 @@ struct Session::Impl {
   ChangeSet changes;
 
   void mesh_replaced() {
+    mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
     tree_valid = false;
     changes.everything = true;
     changes.topology_changed = true;

@@ -342,6 +342,24 @@ TEST(SculptBrush, StrokeEndsCompactOnlyWhenDeletedSlotsAddUp) {
   EXPECT_GT(compacted, 0);
 }
 
+// Undo restores a copy of the mesh whose arrays are exactly full. The next stroke's first splits
+// must not copy every array in the middle of a frame: the restored mesh has room for them.
+TEST(SculptBrush, AStrokeAfterUndoGrowsTheMeshInPlace) {
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(4));
+  s.set_settings({{"min_length", "1.5%"}, {"max_length", "1.5%"}});  // finer than the sphere: strokes split
+  const auto draw = stroke(BrushTool::Draw, arc(0.2, 0.5), 0.15, 0.5);
+  s.brush_stroke(draw);
+  ASSERT_TRUE(s.undo());
+  const size_t vertices_before = s.mesh().vertices_size();
+  const Point* positions_before = s.mesh().positions().data();
+  s.brush_stroke(draw);
+  s.mesh().validate();
+  EXPECT_GT(s.mesh().vertices_size(), vertices_before) << "the stroke was meant to add vertices";
+  EXPECT_LT(s.mesh().vertices_size(), vertices_before + vertices_before / 8) << "the stroke was meant to stay small";
+  EXPECT_EQ(s.mesh().positions().data(), positions_before) << "the vertex arrays were reallocated";
+}
+
 // Two parallel sheets 0.002 apart, the upper one's grid shifted by half a cell: a stroke starting
 // on the lower sheet at a cell's centre has its nearest vertex on the upper sheet. The stroke's
 // start must still be found on the lower sheet (the exact face scan, not the nearest vertex's fan).
