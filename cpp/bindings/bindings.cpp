@@ -189,7 +189,9 @@ class SessionHandle {
   void grab_end() {
     guarded_void([&] {
       session_.grab_end();
-      sync(true);  // grab_end compacts the mesh: every slot may have moved
+      // Incremental: a stroke's end compacts the mesh only once deleted slots add up, and then the
+      // session reports everything changed (a full rebuild took 3-4 ms per stroke on the bunny).
+      sync(false);
     });
   }
   bool grabbing() const { return session_.grabbing(); }
@@ -241,7 +243,7 @@ class SessionHandle {
   void brush_end() {
     guarded_void([&] {
       session_.brush_end();
-      sync(true);  // brush_end compacts the mesh, like grab_end
+      sync(false);  // as grab_end
     });
   }
   bool brushing() const { return session_.brushing(); }

@@ -151,10 +151,9 @@ size_t Remesher::Impl::split_long_edges() {
   for (int pass = 0; pass < passes && splits < max_splits; ++pass) {
     candidates.clear();
     for (Edge e : scope_edges) {
-      if (on_region_border(e)) continue;
       double limit = kSplitFactor * target_length(e);
       double l2 = squared_length(mesh, e);
-      if (l2 > limit * limit) candidates.push_back({l2 / (limit * limit), e});
+      if (l2 > limit * limit && !on_region_border(e)) candidates.push_back({l2 / (limit * limit), e});
     }
     if (candidates.empty()) break;
     // Longest first: splitting them first gives the better-shaped fans.
