@@ -24,32 +24,51 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
   // a field that is already graded (most of a sculpting frame's region) the queue stays small.
   using Item = std::pair<double, mesh::Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  // A neighbour w can only be lowered by a smaller value (the bound adds a non-negative length), so
-  // the length is measured only then: on a uniform field (min_length == max_length) no square
-  // root is taken, and the seeding was a tenth of a brush stamp's instructions.
+  // On the flat arrays: the seeding visits every edge of a sculpting frame's region.
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  const Point* pos = mesh.positions().data();
+  double* size = sizing.vector().data();
+  const std::uint8_t* in = inside ? inside->data() : nullptr;
+  // The bound at w from v's value; a neighbour w can only be lowered by a smaller value (the bound
+  // adds a non-negative length), so the length is measured only then: on a uniform field
+  // (min_length == max_length) no square root is taken, and the seeding was a tenth of a brush
+  // stamp's instructions.
+  auto lowers = [&](double value, mesh::Index v, mesh::Index w, double* bound) {
+    if (!(value < size[w]) || (in && !in[w])) return false;
+    *bound = value + gradation * glm::length(pos[w] - pos[v]);
+    return *bound < size[w];
+  };
+  auto for_each_neighbour = [&](mesh::Index v, auto&& fn) {  // stops when fn returns true
+    const mesh::Halfedge start = vh[v];
+    if (!start.is_valid()) return;
+    mesh::Halfedge h = start;
+    do {
+      if (fn(hc[h.idx].to.idx)) return;
+      h = hc[h.idx ^ 1u].next;
+    } while (h != start);
+  };
   for (mesh::Vertex v : vertices) {
-    const double value = sizing[v];
-    for (mesh::Vertex w : mesh.vertices(v)) {
-      if (!(value < sizing[w]) || (inside && !(*inside)[w.idx])) continue;
-      if (value + gradation * glm::length(mesh.position(w) - mesh.position(v)) < sizing[w]) {
-        queue.push({value, v.idx});
-        break;
-      }
-    }
+    const double value = size[v.idx];
+    double bound;
+    for_each_neighbour(v.idx, [&](mesh::Index w) {
+      if (!lowers(value, v.idx, w, &bound)) return false;
+      queue.push({value, v.idx});
+      return true;
+    });
   }
   while (!queue.empty()) {
-    auto [value, idx] = queue.top();
+    auto [value, v] = queue.top();
     queue.pop();
-    mesh::Vertex v(idx);
-    if (value > sizing[v]) continue;  // stale entry
-    for (mesh::Vertex w : mesh.vertices(v)) {
-      if (!(value < sizing[w]) || (inside && !(*inside)[w.idx])) continue;
-      double bound = value + gradation * glm::length(mesh.position(w) - mesh.position(v));
-      if (bound < sizing[w]) {
-        sizing[w] = bound;
-        queue.push({bound, w.idx});
+    if (value > size[v]) continue;  // stale entry
+    for_each_neighbour(v, [&](mesh::Index w) {
+      double bound;
+      if (lowers(value, v, w, &bound)) {
+        size[w] = bound;
+        queue.push({bound, w});
       }
-    }
+      return false;
+    });
   }
 }
 
