@@ -58,7 +58,9 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
     });
   }
   while (!queue.empty()) {
-    auto [value, v] = queue.top();
+    // Plain variables, not a structured binding: C++17 lambdas cannot capture those (clang refuses).
+    const double value = queue.top().first;
+    const mesh::Index v = queue.top().second;
     queue.pop();
     if (value > size[v]) continue;  // stale entry
     for_each_neighbour(v, [&](mesh::Index w) {
