@@ -89,7 +89,9 @@ TEST(Sizing, PlaneGetsMaxLength) {
   remesh::remesh(m, o);
   auto sizing = m.get_vertex_property<double>("remesh:sizing");
   for (Vertex v : m.vertices())
-    if (!m.is_boundary(v)) EXPECT_NEAR(sizing[v], 0.1, 1e-9);
+    if (!m.is_boundary(v)) {
+      EXPECT_NEAR(sizing[v], 0.1, 1e-9);
+    }
   EXPECT_EQ(geometry::boundary_loops(m), 1);
 }
 
