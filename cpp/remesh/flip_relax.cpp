@@ -132,7 +132,8 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
   const std::uint8_t* sc = scope.vector().data();
   const Point* pos = mesh.positions().data();
   double* fq = face_quality.data();
-  auto quality_of = [&](Index f) {
+  // Inlined by hand: clang left it a call in the wasm build (7 % of a smooth stamp).
+  auto quality_of = [&](Index f) __attribute__((always_inline)) {
     const Halfedge h0 = fh[f], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
     return min_angle_sin2(pos[hc[h0.idx].to.idx], pos[hc[h1.idx].to.idx], pos[hc[h2.idx].to.idx]);
   };
@@ -215,13 +216,39 @@ void Remesher::Impl::relax_vertices() {
   const std::uint8_t* vcl = vclass.vector().data();
   const double* siz = sizing.vector().data();
   const Point* pos = mesh.positions().data();
+  // In a region call, the faces with an active corner are listed as they are first met: the
+  // sliver pass after this one checks exactly those (fix_bad_faces), and walked every fan of the
+  // region again to find them.
+  faces_scratch.clear();
+  const bool list_faces = !whole_mesh;
+  // Equation 6's terms of face f: computed once per call, from its own corners, and shared by
+  // its corners (they were computed once per corner: a fifth of a sculpting frame's instructions).
+  auto face_terms = [&](mesh::Face f) __attribute__((always_inline)) -> const RelaxFace& {
+    RelaxFace& t = relax_faces[f.idx];
+    if (seen[f.idx] != face_run) {
+      seen[f.idx] = face_run;
+      if (list_faces) faces_scratch.push_back(f);
+      const auto& c0 = hc[fh[f.idx].idx];
+      const Index a = c0.to.idx, b = hc[c0.next.idx].to.idx, d = hc[c0.prev.idx].to.idx;
+      t.normal = glm::cross(pos[b] - pos[a], pos[d] - pos[a]);
+      t.weight = 0.5 * glm::length(t.normal) * ((siz[a] + siz[b] + siz[d]) / 3.0);
+      t.weighted_centre = t.weight * (pos[a] + pos[b] + pos[d]) / 3.0;
+    }
+    return t;
+  };
   for (size_t i = 0; i < scope_vertices.size(); ++i) {
     Vertex v = scope_vertices[i];
     if (vdel[v.idx]) continue;
     const Point p = pos[v.idx];
     new_positions[i] = p;
-    if (sc[v.idx] != kActive || vcl[v.idx] == kCorner) continue;  // !movable(v)
-    if (vcl[v.idx] == kFeatureLine) {
+    if (sc[v.idx] != kActive) continue;  // held
+    if (vcl[v.idx] != kFree) {
+      // Not moved by equation 6 (corners not at all): their faces are listed all the same.
+      if (list_faces)
+        for_each_outgoing(hc, vh, v, [&](Halfedge h) {
+          if (hc[h.idx].face.is_valid()) face_terms(hc[h.idx].face);
+        });
+      if (vcl[v.idx] == kCorner) continue;
       // Along the feature line: the two feature edges' midpoints weighted by length x sizing.
       Vertex ends[2];
       int n = 0;
@@ -240,24 +267,14 @@ void Remesher::Impl::relax_vertices() {
       new_positions[i] = p + t * (glm::dot(c - p, t) / tl);
       continue;
     }
-    // Equation 6: triangle barycentres weighted by area x sizing at the barycentre. Each face's
-    // terms are computed once per call, from its own corners, and shared by its corners (they
-    // were computed once per corner: a fifth of a sculpting frame's instructions).
+    // Equation 6: triangle barycentres weighted by area x sizing at the barycentre.
     Vec3 normal(0.0);
     Point c(0.0);
     double weight = 0;
     for_each_outgoing(hc, vh, v, [&](Halfedge h) {
       const mesh::Face f = hc[h.idx].face;
       if (!f.is_valid()) return;
-      RelaxFace& t = relax_faces[f.idx];
-      if (seen[f.idx] != face_run) {
-        seen[f.idx] = face_run;
-        const auto& c0 = hc[fh[f.idx].idx];
-        const Index a = c0.to.idx, b = hc[c0.next.idx].to.idx, d = hc[c0.prev.idx].to.idx;
-        t.normal = glm::cross(pos[b] - pos[a], pos[d] - pos[a]);
-        t.weight = 0.5 * glm::length(t.normal) * ((siz[a] + siz[b] + siz[d]) / 3.0);
-        t.weighted_centre = t.weight * (pos[a] + pos[b] + pos[d]) / 3.0;
-      }
+      const RelaxFace& t = face_terms(f);
       normal += t.normal;
       c += t.weighted_centre;
       weight += t.weight;
@@ -268,6 +285,7 @@ void Remesher::Impl::relax_vertices() {
     Vec3 u = c / weight - p;
     new_positions[i] = p + (u - normal * glm::dot(normal, u));
   }
+  active_faces_listed = list_faces;
   Point* out = mesh.positions().data();
   for (size_t i = 0; i < scope_vertices.size(); ++i) {
     const Index v = scope_vertices[i].idx;
@@ -288,17 +306,22 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
   const double sin_limit = portable::sin(angle_deg * M_PI / 180.0);
   const double sin2_limit = sin_limit * sin_limit;
   size_t fixed = 0;
+  // The faces relax_vertices listed, when it ran just before (the first pass; the passes after a
+  // fix gather them again).
+  bool listed = active_faces_listed && !whole_mesh;
+  active_faces_listed = false;
   for (int pass = 0; pass < 3; ++pass) {
     size_t fixed_this_pass = 0;
-    faces_scratch.clear();
+    if (!listed) faces_scratch.clear();
     // Flat arrays: collapses and flips add no elements, so the pointers stay valid.
     const auto* hc = mesh.halfedge_connectivity_data();
     const Halfedge* fh = mesh.face_halfedge_data();
     const std::uint8_t* fdel = mesh.face_deleted_data();
     const Point* pos = mesh.positions().data();
-    if (whole_mesh) {
-      // Every face slot in order, below: collapses and flips add no faces, and the deleted
-      // check at each visit skips what the snapshot of live faces would have skipped.
+    if (whole_mesh || listed) {
+      // Whole mesh: every face slot in order, below: collapses and flips add no faces, and the
+      // deleted check at each visit skips what the snapshot of live faces would have skipped.
+      listed = false;
     } else {
       // Each face once: from its first active corner in halfedge order.
       const Halfedge* vh = mesh.vertex_halfedge_data();

@@ -88,11 +88,12 @@ struct RelaxFace {
 struct RemeshScratch {
   std::vector<Vertex> scope_vertices;
   std::vector<Edge> scope_edges;
+  std::vector<Edge> split_recheck;  // split_long_edges: the edges at the vertices its last pass added
   std::vector<mesh::Face> faces_scratch;
   std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
   std::vector<std::uint32_t> face_seen;  // per face slot: == face_run when face_quality is current
   std::uint32_t face_run = 0;
-  std::vector<std::pair<double, Edge>> candidates;
+  std::vector<std::uint64_t> candidates;  // split/collapse passes: sort keys (split_collapse.cpp)
   std::vector<int> valence;
   std::vector<int> valence_excess;  // valence minus its target (4 on the boundary, 6 inside): flip_edges
   std::vector<Point> new_positions;
@@ -150,6 +151,7 @@ struct Remesher::Impl : RemeshScratch {
   // Scratch buffers, reused so iterations do not allocate once warmed up (and those of
   // RemeshScratch outlive the remesher).
   bool scope_edges_complete = false;  // scope_edges is every edge of the scope (gather_scope_edges)
+  bool active_faces_listed = false;   // faces_scratch is every face with an active corner (relax_vertices)
   std::vector<std::uint32_t> neck_triangles;  // reference_cross_section: the triangles gathered
   std::vector<std::uint32_t> neck_stamp;      // per reference triangle: == neck_run when gathered
   std::uint32_t neck_run = 0;
