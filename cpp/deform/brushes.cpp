@@ -9,6 +9,7 @@
 
 #include "geometry/normals.h"
 #include "geometry/triangle.h"
+#include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
 
 namespace adasculpt::deform {
@@ -139,12 +140,17 @@ void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double r
   if (!inside(s.seed)) return;
   in_stamp_[s.seed.idx] = stamp_run_;
   inside_.push_back(s.seed);
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  std::uint32_t* in_stamp = in_stamp_.data();
   for (size_t i = 0; i < inside_.size(); ++i)  // breadth-first: inside_ is the queue
-    for (Vertex w : mesh.vertices(inside_[i]))
-      if (in_stamp_[w.idx] != stamp_run_) {
-        in_stamp_[w.idx] = stamp_run_;
+    mesh::for_each_outgoing(hc, vh, inside_[i], [&](mesh::Halfedge h) {
+      const Vertex w = hc[h.idx].to;
+      if (in_stamp[w.idx] != stamp_run_) {
+        in_stamp[w.idx] = stamp_run_;
         if (inside(w)) inside_.push_back(w);
       }
+    });
   for (Vertex v : inside_) weight_.push_back(brush_falloff(glm::length(mesh.position(v) - s.center), radius));
 }
 
@@ -218,13 +224,16 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
         d = (sign * kDisplace * st.radius * w) * smooth_normal_[k];
         break;
       case BrushTool::Smooth: {
-        if (mesh.is_boundary(v)) break;  // a Laplacian step would shrink the border
+        const auto* hc = mesh.halfedge_connectivity_data();
+        const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+        if (mesh::is_boundary_vertex(hc, vh, v)) break;  // a Laplacian step would shrink the border
+        const Point* pos = mesh.positions().data();
         Point c(0.0);
         int n = 0;
-        for (Vertex u : mesh.vertices(v)) {
-          c += mesh.position(u);
+        mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+          c += pos[hc[h.idx].to.idx];
           ++n;
-        }
+        });
         if (n > 0) d = w * (c / double(n) - p);
         break;
       }
@@ -288,15 +297,21 @@ std::vector<Vertex>& BrushDeformer::apply(SurfaceMesh& mesh, const BrushSettings
   } else {
     for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
   }
-  for (Vertex v : touched_) mesh.position(v) += sum_[v.idx] / double(count_[v.idx]);
+  Point* pos = mesh.positions().data();
+  for (Vertex v : touched_) pos[v.idx] += sum_[v.idx] / double(count_[v.idx]);
   moved_ = touched_.size();
   region_ = touched_;
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  std::uint32_t* mark = mark_.data();
   for (Vertex v : touched_)
-    for (Vertex w : mesh.vertices(v))
-      if (mark_[w.idx] != run_) {
-        mark_[w.idx] = run_;
+    mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+      const Vertex w = hc[h.idx].to;
+      if (mark[w.idx] != run_) {
+        mark[w.idx] = run_;
         region_.push_back(w);
       }
+    });
   return region_;
 }
 

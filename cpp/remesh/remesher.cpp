@@ -139,24 +139,30 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       m.scope[v] = kActive;
       m.scope_vertices.push_back(v);
     }
-  // Vertices with a neighbour outside the region hold the border in place, and the feature
-  // classification may be stale where the deformation added vertices: one walk around each fan
-  // does both.
+  // Vertices with a neighbour outside the region hold the border in place, the feature
+  // classification may be stale where the deformation added vertices, and the split pass needs
+  // every edge of the scope (gather_scope_edges): one walk around each fan does all three. Held
+  // or active makes no difference to which edges are the scope's.
   {
     const auto* hc = m.mesh.halfedge_connectivity_data();
     const Halfedge* vh = m.mesh.vertex_halfedge_data();
     const std::uint8_t* feat = m.feature.vector().data();
     std::uint8_t* sc = m.scope.vector().data();
+    m.scope_edges.clear();
     for (Vertex v : m.scope_vertices) {
       int features = 0;
       bool held = false;
       for_each_outgoing(hc, vh, v, [&](Halfedge h) {
-        held = held || sc[hc[h.idx].to.idx] == kOutside;
+        const mesh::Index w = hc[h.idx].to.idx;
+        const bool outside = sc[w] == kOutside;
+        held = held || outside;
         features += feat[h.idx >> 1] != 0;
+        if (!outside && v.idx < w) m.scope_edges.push_back(SurfaceMesh::edge(h));
       });
       if (held) sc[v.idx] = kHeld;
       m.vclass[v] = vertex_class(features);
     }
+    m.scope_edges_complete = true;
   }
   // The curvature of a surface being dragged changes little from one frame to the next: the
   // sizing is measured again every few calls, and vertices added in between carry the mean

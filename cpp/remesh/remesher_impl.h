@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/aabb_tree.h"
+#include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
 #include "remesh/remesher.h"
 
@@ -36,18 +37,7 @@ enum Scope : std::uint8_t {
   kHeld = 2,     // on the border of a region: keeps its position and stays
 };
 
-// Calls fn(h) for every outgoing halfedge h of v, in the order of mesh.halfedges(v), on the mesh's
-// flat connectivity arrays: the passes of a sculpting frame walk every fan of the region this way.
-template <class Fn>
-inline void for_each_outgoing(const SurfaceMesh::HalfedgeConnectivity* hc, const Halfedge* vh, Vertex v, Fn&& fn) {
-  const Halfedge start = vh[v.idx];
-  if (!start.is_valid()) return;
-  Halfedge h = start;
-  do {
-    fn(h);
-    h = hc[h.idx ^ 1u].next;
-  } while (h != start);
-}
+using mesh::for_each_outgoing;  // mesh/flat_walk.h: the passes of a sculpting frame walk every fan of the region this way
 
 // Largest growth of the target edge length per unit distance (see limit_sizing_gradation).
 // 0.2 measured best on the shared meshes: 0.4 leaves 22-24 degree minimum angles and 0.25 a mean

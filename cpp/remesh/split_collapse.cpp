@@ -150,7 +150,7 @@ size_t Remesher::Impl::split_shared_triangle(Edge e, Edge image) {
 
 size_t Remesher::Impl::split_long_edges() {
   size_t splits = 0;
-  gather_scope_edges();
+  if (!scope_edges_complete) gather_scope_edges();  // (a region call gathered them already)
   // A sculpting frame does bounded work: two passes (a long edge halves, then its halves may
   // halve once more); later frames continue. A whole-mesh iteration splits until done.
   const int passes = whole_mesh ? kMaxSplitPasses : kRegionSplitPasses;
