@@ -211,6 +211,10 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
   }
   if (st.tool == BrushTool::Inflate) smooth_normals(mesh, kDisplace * st.radius * amount);
 
+  const auto* hc = mesh.halfedge_connectivity_data();  // the smooth brush's Laplacian walks the fans
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  const Point* pos = mesh.positions().data();
+
   for (size_t k = 0; k < inside_.size(); ++k) {
     const Vertex v = inside_[k];
     const Point& p = mesh.position(v);
@@ -224,10 +228,7 @@ void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, c
         d = (sign * kDisplace * st.radius * w) * smooth_normal_[k];
         break;
       case BrushTool::Smooth: {
-        const auto* hc = mesh.halfedge_connectivity_data();
-        const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
-        if (mesh::is_boundary_vertex(hc, vh, v)) break;  // a Laplacian step would shrink the border
-        const Point* pos = mesh.positions().data();
+        if (mesh.is_boundary(v)) break;  // a Laplacian step would shrink the border
         Point c(0.0);
         int n = 0;
         mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {

@@ -21,10 +21,4 @@ inline void for_each_outgoing(const SurfaceMesh::HalfedgeConnectivity* hc, const
   } while (h != start);
 }
 
-// SurfaceMesh::is_boundary(v) on the same arrays.
-inline bool is_boundary_vertex(const SurfaceMesh::HalfedgeConnectivity* hc, const Halfedge* vh, Vertex v) {
-  const Halfedge h = vh[v.idx];
-  return !h.is_valid() || !hc[h.idx].face.is_valid();
-}
-
 }  // namespace adasculpt::mesh

@@ -141,7 +141,7 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
     }
   // Vertices with a neighbour outside the region hold the border in place, the feature
   // classification may be stale where the deformation added vertices, and the split pass needs
-  // every edge of the scope (gather_scope_edges): one walk around each fan does all three. Held
+  // every edge of the scope (scope_edges): one walk around each fan does all three. Held
   // or active makes no difference to which edges are the scope's.
   {
     const auto* hc = m.mesh.halfedge_connectivity_data();
@@ -162,7 +162,6 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       if (held) sc[v.idx] = kHeld;
       m.vclass[v] = vertex_class(features);
     }
-    m.scope_edges_complete = true;
   }
   // The curvature of a surface being dragged changes little from one frame to the next: the
   // sizing is measured again every few calls, and vertices added in between carry the mean

@@ -77,7 +77,7 @@ struct RelaxFace {
 // holds no value above face_run and kappa_known is all zero, whoever used them last.
 struct RemeshScratch {
   std::vector<Vertex> scope_vertices;
-  std::vector<Edge> scope_edges;
+  std::vector<Edge> scope_edges;  // every edge of the scope: iterate_region or gather_all_edges, kept by the split pass
   std::vector<Edge> split_recheck;  // split_long_edges: the edges at the vertices its last pass added
   std::vector<mesh::Face> faces_scratch;
   std::vector<double> face_quality;  // per face slot: min_angle_sin2, during flip_for_angles
@@ -140,7 +140,6 @@ struct Remesher::Impl : RemeshScratch {
 
   // Scratch buffers, reused so iterations do not allocate once warmed up (and those of
   // RemeshScratch outlive the remesher).
-  bool scope_edges_complete = false;  // scope_edges is every edge of the scope (gather_scope_edges)
   bool active_faces_listed = false;   // faces_scratch is every face with an active corner (relax_vertices)
   std::vector<std::uint32_t> neck_triangles;  // reference_cross_section: the triangles gathered
   std::vector<std::uint32_t> neck_stamp;      // per reference triangle: == neck_run when gathered
@@ -171,7 +170,7 @@ struct Remesher::Impl : RemeshScratch {
   double sizing_of_hit(const geometry::TriangleTree::ClosestHit& hit) const;
 
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
-  void gather_scope_edges();
+  void gather_all_edges();
   size_t split_long_edges();
   size_t collapse_short_edges();
   size_t flip_edges();

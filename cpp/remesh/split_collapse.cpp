@@ -55,27 +55,11 @@ double key_ratio(std::uint64_t key) {
 
 }  // namespace
 
-void Remesher::Impl::gather_scope_edges() {
+// A whole-mesh iteration's scope is every edge (a region call gathers its scope's edges in its
+// classification walk, iterate_region).
+void Remesher::Impl::gather_all_edges() {
   scope_edges.clear();
-  scope_edges_complete = true;
-  if (whole_mesh) {
-    for (Edge e : mesh.edges()) scope_edges.push_back(e);
-    return;
-  }
-  // The fans walked on the flat arrays (for_each_outgoing): two calls per sculpting frame, over
-  // every edge of the region.
-  const auto* hc = mesh.halfedge_connectivity_data();
-  const Halfedge* vh = mesh.vertex_halfedge_data();
-  const std::uint8_t* vdel = mesh.vertex_deleted_data();
-  const std::uint8_t* sc = scope.vector().data();
-  for (Vertex v : scope_vertices) {
-    if (vdel[v.idx]) continue;
-    for_each_outgoing(hc, vh, v, [&](Halfedge h) {
-      // Each edge once, from its lower-index end; none to a vertex outside the scope.
-      const mesh::Index w = hc[h.idx].to.idx;
-      if (sc[w] != kOutside && v.idx < w) scope_edges.push_back(SurfaceMesh::edge(h));
-    });
-  }
+  for (Edge e : mesh.edges()) scope_edges.push_back(e);
 }
 
 Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
@@ -150,7 +134,7 @@ size_t Remesher::Impl::split_shared_triangle(Edge e, Edge image) {
 
 size_t Remesher::Impl::split_long_edges() {
   size_t splits = 0;
-  if (!scope_edges_complete) gather_scope_edges();  // (a region call gathered them already)
+  if (whole_mesh) gather_all_edges();  // (a region call gathered its scope's edges already)
   // A sculpting frame does bounded work: two passes (a long edge halves, then its halves may
   // halve once more); later frames continue. A whole-mesh iteration splits until done.
   const int passes = whole_mesh ? kMaxSplitPasses : kRegionSplitPasses;
@@ -335,7 +319,6 @@ void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
 // after it reuse the list, since collapses and flips create no edges (a neck refinement's
 // splits are left to the next iteration).
 size_t Remesher::Impl::collapse_short_edges() {
-  if (!scope_edges_complete) gather_scope_edges();
   candidates.clear();
   for (Edge e : scope_edges) {
     double limit = kCollapseFactor * target_length(e);
@@ -360,7 +343,6 @@ size_t Remesher::Impl::collapse_short_edges() {
     }
     collapses += collapse_with_mirror(h, midpoint);
   }
-  scope_edges_complete = false;  // the flips use the list as it is, the next split pass gathers again
   return collapses;
 }
 
