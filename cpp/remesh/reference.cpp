@@ -165,9 +165,12 @@ void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices)
       const double span = 0.5 * (glm::length(in) + glm::length(out));
       // A sharper turn is a corner of the line, not a curve to resolve.
       if (turn > 0 && turn < kMaxCurveTurn && span > 0) {
+        // A line curving tighter than the tolerance (r < eps) lies within eps of any chord up to
+        // 2 eps long, the formula's value at r = eps: past it the formula falls again, and a coarser
+        // tolerance would ask for shorter edges (see sizing_from_curvature).
         const double r = span / turn, e = opt.epsilon;
-        const double chord2 = 8 * r * e - 4 * e * e;
-        size = std::min(size, chord2 > 0 ? std::max(std::sqrt(chord2), opt.min_length) : opt.min_length);
+        const double chord2 = r > e ? 8 * r * e - 4 * e * e : 4 * e * e;
+        size = std::min(size, std::max(std::sqrt(chord2), opt.min_length));
       }
     }
     sizing[v] = size;

@@ -10,8 +10,14 @@ namespace adasculpt::remesh {
 
 double sizing_from_curvature(double kappa, double epsilon, double min_length, double max_length) {
   if (!(kappa > 0.0)) return max_length;
-  double squared = 6.0 * epsilon / kappa - 3.0 * epsilon * epsilon;
-  if (squared <= 0.0) return min_length;
+  // The formula is the chord rule for a sphere of radius r = 1/kappa: its value grows with eps up
+  // to eps = r (L = sqrt(3) r, the triangle inscribed in a great circle) and falls after it, to 0
+  // at eps = 2r. Past r the whole bump lies within eps of any triangle near it, and the detail is
+  // below the tolerance: the field keeps sqrt(3) eps there. Using the falling branch (or
+  // min_length where it had no real solution) asked for the SHORTEST edges exactly where a coarse
+  // tolerance meets a noisy scan: bunny at eps 2% of the diagonal got 34,956 vertices, 5% 157k.
+  // This way L never shrinks as eps grows, nor grows as kappa grows.
+  const double squared = kappa * epsilon < 1.0 ? 6.0 * epsilon / kappa - 3.0 * epsilon * epsilon : 3.0 * epsilon * epsilon;
   return std::clamp(std::sqrt(squared), min_length, max_length);
 }
 

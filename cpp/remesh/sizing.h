@@ -8,8 +8,9 @@
 
 namespace adasculpt::remesh {
 
-// Clamped to [min_length, max_length]; flat regions (kappa = 0) get max_length and curvature
-// so high that the formula has no real solution gets min_length.
+// Clamped to [min_length, max_length]; flat regions (kappa = 0) get max_length. Where the
+// radius of curvature is below eps (details under the tolerance) L = sqrt(3) eps, the
+// formula's value at kappa = 1 / eps: L is non-decreasing in eps and non-increasing in kappa.
 double sizing_from_curvature(double kappa, double epsilon, double min_length, double max_length);
 
 // Limits how fast the sizing may grow away from small values: L(v) <= L(w) + gradation * |v - w|
