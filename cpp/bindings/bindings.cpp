@@ -289,6 +289,7 @@ class SessionHandle {
                          {"deform_ms", t.deform_ms}, {"remesh_ms", t.remesh_ms}, {"total_ms", t.total_ms}};
       j["can_undo"] = session_.can_undo();
       j["can_redo"] = session_.can_redo();
+      if (!session_.remesh_warning().empty()) j["warning"] = session_.remesh_warning();  // last remesh hit its limit
       return j.dump();
     });
   }

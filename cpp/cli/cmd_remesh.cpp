@@ -1,5 +1,5 @@
 // `adasculpt remesh IN OUT [--uniform] [--epsilon E] [--min-length A] [--max-length B]
-// [--length L] [--iterations N] [--no-projection] [--features DEG] [--json]`
+// [--length L] [--iterations N] [--no-projection] [--features DEG] [--max-vertices N] [--json]`
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -27,6 +27,7 @@ struct RemeshArgs {
   double features = 0;
   bool json = false;
   size_t samples = 100000;
+  size_t max_vertices = remesh::RemeshOptions::kDefaultMaxVertices;
 };
 
 void run_remesh(const RemeshArgs& a) {
@@ -43,13 +44,15 @@ void run_remesh(const RemeshArgs& a) {
   o.iterations = a.iterations;
   o.projection = !a.no_projection;
   o.feature_angle_deg = a.features;
+  o.max_vertices = a.max_vertices;
   remesh::check_options(o);
 
   const mesh::SurfaceMesh input = m;
   auto start = std::chrono::steady_clock::now();
-  remesh::remesh(m, o);
+  const remesh::RemeshReport report = remesh::remesh(m, o);
   double remesh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   io::save_mesh(m, a.output);
+  if (!report.warning.empty()) print_warnings({report.warning});  // one line; the result is still written
 
   const geometry::QualityReport q = geometry::quality_report(m);
   if (!a.json) {
@@ -67,6 +70,9 @@ void run_remesh(const RemeshArgs& a) {
   out["epsilon_rel"] = o.epsilon / diagonal;
   out["input_vertices"] = input.n_vertices();
   out["input_faces"] = input.n_faces();
+  out["estimated_vertices"] = report.estimated_vertices;
+  out["vertex_budget"] = report.vertex_budget;
+  if (!report.warning.empty()) out["warning"] = report.warning;
   print_json(out);
 }
 
@@ -87,6 +93,9 @@ void register_remesh(CLI::App& app) {
   cmd->add_option("--iterations", a->iterations, "remeshing iterations")->capture_default_str();
   cmd->add_flag("--no-projection", a->no_projection, "do not project vertices back onto the input surface");
   cmd->add_option("--features", a->features, "keep edges sharper than this dihedral angle (degrees); 0 = off")
+      ->capture_default_str();
+  cmd->add_option("--max-vertices", a->max_vertices,
+                  "hard limit on the output's vertices (refinement stops there with a warning)")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print one JSON object with the figures (includes distance to the input)");
   cmd->callback([a] { run_remesh(*a); });

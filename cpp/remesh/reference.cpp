@@ -269,6 +269,7 @@ void Remesher::Impl::build_reference() {
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
   tree.build(std::move(points), std::move(triangles));
   has_reference = !tree.empty();
+  estimate_vertex_budget();
   ref_near_neck.assign(tree.points().size(), 0);
   necks.clear();
   // Incidence of the tree's triangles (it drops degenerate ones and reorders).

@@ -52,6 +52,7 @@ void check_options(const RemeshOptions& o) {
     positive(o.target_length, "length");
   }
   if (o.iterations < 0) throw std::invalid_argument("iterations must not be negative");
+  if (o.max_vertices < 4) throw std::invalid_argument("max-vertices must be at least 4");
   if (!(o.feature_angle_deg >= 0 && o.feature_angle_deg <= 180))
     throw std::invalid_argument("features must be an angle between 0 and 180 degrees");
 }
@@ -64,6 +65,8 @@ Remesher::Remesher(SurfaceMesh& mesh, const RemeshOptions& options) : impl_(std:
 Remesher::~Remesher() { disable_mirror(); }  // the map is only valid while the remesher keeps it
 
 const RemeshOptions& Remesher::options() const { return impl_->opt; }
+
+const RemeshReport& Remesher::report() const { return impl_->report; }
 
 void Remesher::set_options(const RemeshOptions& options) {
   check_options(options);
@@ -191,13 +194,16 @@ size_t Remesher::polish() {
   return moved;
 }
 
-void remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
+  RemeshReport report;
   {
     Remesher remesher(mesh, options);
     for (int i = 0; i < options.iterations; ++i) remesher.iterate();
     remesher.polish();
+    report = remesher.report();
   }
   mesh.garbage_collection();
+  return report;
 }
 
 }  // namespace adasculpt::remesh

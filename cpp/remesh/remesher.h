@@ -9,7 +9,9 @@
 //
 // A Remesher keeps its reference surface (AABB tree, curvature, sizing) alive between calls so
 // that interactive use pays only for what changed; remesh() is the one-shot batch entry.
+#include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -29,6 +31,10 @@ struct RemeshOptions {
   int iterations = 5;
   bool projection = true;        // back-project onto the reference surface
   double feature_angle_deg = 0;  // > 0: edges with a larger dihedral angle are kept sharp
+  // Hard limit on the vertices a whole-mesh remesh may reach, whatever the settings ask for (the
+  // browser tab dies at 2 GB): about 0.2 kB per vertex for the mesh and the passes' buffers.
+  size_t max_vertices = kDefaultMaxVertices;
+  static constexpr size_t kDefaultMaxVertices = 2'000'000;
 };
 
 // Defaults of the command line, as fractions of the bounding-box diagonal: epsilon 0.05%,
@@ -41,6 +47,19 @@ void check_options(const RemeshOptions& options);
 
 struct IterationStats {
   size_t splits = 0, collapses = 0, flips = 0;
+};
+
+// What a whole-mesh remesh did beyond the mesh itself.
+struct RemeshReport {
+  // Vertices the sizing field asks for (its integral of 2 / (sqrt(3) L^2) over the input, the
+  // vertex density of equilateral triangles of side L); 0 before the reference is built.
+  double estimated_vertices = 0;
+  // The vertex budget: kBudgetPerEstimate x estimate + kBudgetPerInputVertex x input + a constant,
+  // capped at options.max_vertices.
+  size_t vertex_budget = 0;
+  // Empty, or one line for the user: the mesh hit its budget and splitting stopped (the result is
+  // the valid mesh reached so far).
+  std::string warning;
 };
 
 class Remesher {
@@ -78,6 +97,8 @@ class Remesher {
   // The mesh changed outside the remesher's control (e.g. deformation or a new load):
   // the reference surface is rebuilt from the current mesh on the next whole-mesh iteration.
   void reset_reference();
+  // Estimate, budget and warning of the whole-mesh iterations since the reference was built.
+  const RemeshReport& report() const;
   const RemeshOptions& options() const;
   void set_options(const RemeshOptions& options);
 
@@ -86,7 +107,8 @@ class Remesher {
   std::unique_ptr<Impl> impl_;
 };
 
-// Batch remeshing: options.iterations iterations against the input surface.
-void remesh(SurfaceMesh& mesh, const RemeshOptions& options);
+// Batch remeshing: options.iterations iterations against the input surface. Bounded: the mesh
+// never exceeds the report's vertex budget, and the work of every pass is proportional to it.
+RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options);
 
 }  // namespace adasculpt::remesh

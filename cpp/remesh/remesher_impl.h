@@ -126,6 +126,14 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<std::array<std::uint32_t, 2>> ref_segments;
   std::vector<std::uint32_t> ref_segment_offset, ref_segment_of_point;
   bool has_reference = false;
+  // ---- the vertex budget (budget.cpp)
+  RemeshReport report;
+  static constexpr double kBudgetPerEstimate = 4.0;
+  static constexpr double kBudgetPerInputVertex = 1.0;  // input vertices no collapse can remove
+  static constexpr size_t kBudgetConstant = 1000;
+  void estimate_vertex_budget();  // from the reference's sizing; build_reference calls it
+  size_t splits_allowed() const;  // before the budget is reached (no limit in region calls)
+  void note_budget_reached();     // sets the report's warning
   bool whole_mesh = false;
   int region_calls_since_sizing = 0;  // the scope is every vertex: iterate edges directly
   bool reference_stale = false;

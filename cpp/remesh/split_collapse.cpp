@@ -140,7 +140,8 @@ size_t Remesher::Impl::split_long_edges() {
   const int passes = whole_mesh ? kMaxSplitPasses : kRegionSplitPasses;
   // At most doubling the region per frame, whatever the sizing says (a stray vertex far away
   // makes every edge to it "long"): the work of one frame stays proportional to the region.
-  const size_t max_splits = whole_mesh ? SIZE_MAX : scope_vertices.size();
+  // A whole-mesh iteration stops at the vertex budget (budget.cpp).
+  const size_t max_splits = whole_mesh ? splits_allowed() : scope_vertices.size();
   // An edge between two held vertices with a triangle outside the scope is the border of a
   // region: splitting it halves that outside triangle, which no pass of a region call may improve
   // (its third corner is untouched): a refining brush left 11-13 % of the triangles just outside
@@ -187,6 +188,7 @@ size_t Remesher::Impl::split_long_edges() {
         if (!w_new || scope_vertices[i].idx < w.idx) split_recheck.push_back(mesh.edge(h));
       }
   }
+  if (whole_mesh && splits >= max_splits) note_budget_reached();
   // Splits delete nothing; an added edge to a vertex outside the scope is not the scope's.
   const auto* hc = mesh.halfedge_connectivity_data();
   const std::uint8_t* sc = scope.vector().data();

@@ -157,6 +157,7 @@ struct Session::Impl {
   mutable bool tree_valid = false;
 
   FrameTimings last;
+  std::string remesh_warning;  // of the last whole-mesh remesh(); empty when it was within its budget
   ChangeSet changes;
 
   void mesh_replaced() {
@@ -374,7 +375,7 @@ void Session::remesh(int iterations) {
   remesh::RemeshOptions o = s.options;
   o.projection = true;
   o.iterations = iterations;
-  remesh::remesh(s.mesh, o);
+  s.remesh_warning = remesh::remesh(s.mesh, o).warning;
   if (s.mesh.has_garbage()) s.mesh.garbage_collection();
   s.last = FrameTimings{};
   s.last.remesh_ms = s.last.total_ms = ms_since(t0);
@@ -485,6 +486,8 @@ geometry::QualityReport Session::quality() const {
   return geometry::quality_report(impl_->mesh);
 }
 const FrameTimings& Session::last_frame() const { return impl_->last; }
+
+const std::string& Session::remesh_warning() const { return impl_->remesh_warning; }
 const ChangeSet& Session::changes() const { return impl_->changes; }
 void Session::clear_changes() {
   impl_->changes.topology_changed = false;

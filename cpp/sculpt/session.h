@@ -100,6 +100,9 @@ class Session {
 
   // Whole-mesh adaptive remeshing with projection onto the current surface; one undo step.
   void remesh(int iterations);
+  // Empty, or one line for the user when the last remesh() stopped at its vertex limit (the mesh
+  // is the valid one reached so far; remesh::RemeshReport::warning).
+  const std::string& remesh_warning() const;
 
   bool undo();
   bool redo();
