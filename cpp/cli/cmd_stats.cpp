@@ -1,5 +1,6 @@
-// `adasculpt stats MESH [--reference REF] [--json] [--samples N]`: the quality report of a
-// mesh and, with a reference, its distance to it.
+// `adasculpt stats MESH [--reference REF] [--json] [--samples N] [--self-intersections [--si-cap N]]`:
+// the quality report of a mesh, with a reference its distance to it, and on request the
+// number of self-intersecting face pairs.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "geometry/quality.h"
+#include "geometry/self_intersections.h"
 
 namespace adasculpt::cli {
 
@@ -21,10 +23,13 @@ struct StatsOptions {
   std::string reference;
   bool json = false;
   size_t samples = 200000;
+  bool self_intersections = false;
+  size_t si_cap = 100000;  // a badly broken mesh can have millions of pairs
 };
 
 void print_table(const std::string& path, const geometry::QualityReport& r,
-                 const std::optional<geometry::DistanceReport>& d, const std::string& reference) {
+                 const std::optional<geometry::DistanceReport>& d, const std::string& reference,
+                 const std::optional<geometry::SelfIntersectionReport>& si) {
   std::printf("%s\n", path.c_str());
   std::printf("  vertices / faces / edges   %zu / %zu / %zu\n", r.vertices, r.faces, r.edges);
   std::printf("  components                 %d\n", r.components);
@@ -44,6 +49,10 @@ void print_table(const std::string& path, const geometry::QualityReport& r,
   std::printf("  degenerate faces           %zu\n", r.degenerate_faces);
   std::printf("  bounding box diagonal      %.6g\n", r.bbox_diag);
   std::printf("  area                       %.6g\n", r.area);
+  if (si) {
+    std::printf("  self-intersecting pairs    %zu%s (collinear faces left out: %zu)\n", si->pairs.size(),
+                si->capped ? " (capped)" : "", si->degenerate_faces);
+  }
   if (d) {
     std::printf("  distance to %s\n", reference.c_str());
     std::printf("    rms                      %.6g (%.3e of diagonal)\n", d->rms, d->rms_rel);
@@ -63,9 +72,11 @@ void run_stats(const StatsOptions& o) {
   const geometry::QualityReport report = geometry::quality_report(m);
   std::optional<geometry::DistanceReport> distance;
   if (reference) distance = geometry::distance_between(m, *reference, o.samples);
+  std::optional<geometry::SelfIntersectionReport> si;
+  if (o.self_intersections) si = geometry::self_intersections(m, o.si_cap);
 
   if (!o.json) {
-    print_table(o.mesh, report, distance, o.reference);
+    print_table(o.mesh, report, distance, o.reference, si);
     return;
   }
   nlohmann::json out = geometry::to_json(report);
@@ -75,6 +86,11 @@ void run_stats(const StatsOptions& o) {
     out["rms_rel"] = distance->rms_rel;
     out["hausdorff_rel"] = distance->hausdorff_rel;
     out["samples"] = o.samples;
+  }
+  if (si) {
+    out["self_intersecting_pairs"] = si->pairs.size();
+    out["self_intersections_capped"] = si->capped;
+    out["collinear_faces"] = si->degenerate_faces;
   }
   print_json(out);
 }
@@ -88,6 +104,10 @@ void register_stats(CLI::App& app) {
   cmd->add_option("--reference", options->reference, "reference mesh: adds RMS and Hausdorff distance");
   cmd->add_flag("--json", options->json, "print one JSON object instead of the table");
   cmd->add_option("--samples", options->samples, "area samples per direction for the distance")
+      ->capture_default_str();
+  cmd->add_flag("--self-intersections", options->self_intersections,
+                "count self-intersecting face pairs (exact; same definition as CGAL's self_intersections)");
+  cmd->add_option("--si-cap", options->si_cap, "stop counting self-intersecting pairs at this many")
       ->capture_default_str();
   cmd->callback([options] { run_stats(*options); });
 }

@@ -107,6 +107,23 @@ TEST(CliStats, Reference) {
   EXPECT_LT(j["hausdorff_rel"].get<double>(), 1e-12);
 }
 
+TEST(CliStats, SelfIntersections) {
+  // Two separate triangles, the second piercing the first.
+  const fs::path crossing = write_temp("crossing.off",
+                                       "OFF\n6 2 0\n0 0 0\n4 0 0\n0 4 0\n1 1 -1\n1 1 1\n5 5 0\n3 0 1 2\n3 3 4 5\n");
+  CliRun r = run({"stats", crossing.string(), "--self-intersections", "--json"});
+  fs::remove(crossing);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["self_intersecting_pairs"], 1);
+  EXPECT_EQ(j["self_intersections_capped"], false);
+  r = run({"stats", data("meshes/eight.off"), "--self-intersections"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("self-intersecting pairs    0"), std::string::npos) << r.out;
+  r = run({"stats", data("meshes/eight.off"), "--json"});
+  EXPECT_FALSE(nlohmann::json::parse(r.out).contains("self_intersecting_pairs")) << "only on request";
+}
+
 TEST(CliStats, HelpAndVersion) {
   CliRun help = run({"--help"});
   EXPECT_EQ(help.code, 0);

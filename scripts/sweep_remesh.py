@@ -1,0 +1,537 @@
+#!/usr/bin/env python3
+"""Robustness sweep of `adasculpt remesh` (issue 17): every mesh x every setting, each run under a
+CPU-time and a memory cap, measured by `adasculpt stats --reference --self-intersections`.
+
+Run through scripts/sweep-remesh.sh (see its header for the options). Results are cached per run
+(one JSON file per mesh x setting, keyed by the remesh binary's content hash), so an interrupted
+sweep resumes where it stopped and the table can be re-printed without re-running anything.
+"""
+import argparse
+import atexit
+import concurrent.futures
+import hashlib
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+DATA = Path(os.environ.get("ADASCULPT_DATA", Path.home() / ".cache" / "adasculpt"))
+MESH_EXTENSIONS = (".off", ".obj", ".ply", ".stl")
+
+# The grid of issue 17: adaptive epsilon x min length x features, uniform length x features (% of diagonal).
+EPSILONS = [0.01, 0.05, 0.2, 0.5, 1, 2, 5]
+MIN_LENGTHS = [0.02, 0.2]
+FEATURES = [0, 45]
+LENGTHS = [0.5, 2, 8]
+
+# Targets of issue 17.
+CPU_CAP_S = 10.0
+MEM_CAP_MB = 1024
+HAUSDORFF_FACTOR = 2.0  # adaptive: Hausdorff <= 2 epsilon; uniform: <= the target length
+MIN_ANGLE_GOAL = 20.0   # reported, not a hard failure: the input may not allow it (sharp features)
+
+
+class Setting:
+    def __init__(self, kind, features, epsilon=None, min_length=None, length=None):
+        self.kind, self.features = kind, features
+        self.epsilon, self.min_length, self.length = epsilon, min_length, length
+        if kind == "adaptive":
+            self.name = f"eps{epsilon:g}-min{min_length:g}-f{features:g}"
+            self.args = ["--epsilon", f"{epsilon:g}%", "--min-length", f"{min_length:g}%"]
+            self.bound_pct = HAUSDORFF_FACTOR * epsilon
+        else:
+            self.name = f"len{length:g}-f{features:g}"
+            self.args = ["--uniform", "--length", f"{length:g}%"]
+            self.bound_pct = length
+        if features:
+            self.args += ["--features", f"{features:g}"]
+
+    def __repr__(self):
+        return self.name
+
+
+def all_settings():
+    out = [Setting("adaptive", f, epsilon=e, min_length=m) for m in MIN_LENGTHS for f in FEATURES for e in EPSILONS]
+    out += [Setting("uniform", f, length=l) for f in FEATURES for l in LENGTHS]
+    return out
+
+
+# ---- meshes ------------------------------------------------------------------------------------
+
+class Mesh:
+    def __init__(self, name, path):
+        self.name, self.path = name, Path(path)
+
+
+def meshes_in(directory, prefix):
+    if not directory or not Path(directory).is_dir():
+        return []
+    files = sorted(p for p in Path(directory).iterdir() if p.suffix.lower() in MESH_EXTENSIONS and p.is_file())
+    return [Mesh(f"{prefix}/{p.name}", p) for p in files]
+
+
+def cgal_dir(fetch):
+    """The CGAL demo meshes: the cache when present, else downloaded by fetch-cgal-meshes.sh."""
+    cached = DATA / "cgal" / "data" / "meshes"
+    if cached.is_dir():
+        return cached
+    if not fetch:
+        return None
+    r = subprocess.run(["bash", str(REPO / "scripts" / "fetch-cgal-meshes.sh")], stdout=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        print("sweep: CGAL meshes unavailable (see the message above); continuing without them", file=sys.stderr)
+        return None
+    return Path(r.stdout.strip().splitlines()[-1])
+
+
+def write_off(path, points, triangles):
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(points)} {len(triangles)} 0\n")
+        for p in points:
+            f.write(" ".join(f"{c:.17g}" for c in p) + "\n")
+        for t in triangles:
+            f.write(f"3 {t[0]} {t[1]} {t[2]}\n")
+
+
+def orient_outwards(points, triangles, centre):
+    """Orients every triangle of a convex closed surface away from an interior point."""
+    out = []
+    for t in triangles:
+        a, b, c = (points[i] for i in t)
+        n = [(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+             (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+             (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])]
+        g = [(a[k] + b[k] + c[k]) / 3 - centre[k] for k in range(3)]
+        out.append(t if sum(n[k] * g[k] for k in range(3)) > 0 else (t[0], t[2], t[1]))
+    return out
+
+
+def fan_bar(n=16, size=(4.0, 1.0, 1.0)):
+    """A coarse CAD-like bar: long edges cut into n pieces, each long face triangulated as two
+    fans (skinny triangles, valence up to n + 3), sharp 90 degree edges everywhere."""
+    sx, sy, sz = size
+    points, index = [], {}
+
+    def vertex(i, y, z):
+        key = (i, y, z)
+        if key not in index:
+            index[key] = len(points)
+            points.append((sx * i / n, sy * y, sz * z))
+        return index[key]
+
+    triangles = []
+    # Long faces: between two long edges (y0,z0) and (y1,z1).
+    for (y0, z0), (y1, z1) in [((0, 0), (1, 0)), ((1, 0), (1, 1)), ((1, 1), (0, 1)), ((0, 1), (0, 0))]:
+        bottom = [vertex(i, y0, z0) for i in range(n + 1)]
+        top = [vertex(i, y1, z1) for i in range(n + 1)]
+        for i in range(n):
+            triangles.append((bottom[i], bottom[i + 1], top[n]))
+            triangles.append((bottom[0], top[i + 1], top[i]))
+    for i in (0, n):  # square ends
+        a, b, c, d = vertex(i, 0, 0), vertex(i, 1, 0), vertex(i, 1, 1), vertex(i, 0, 1)
+        triangles += [(a, b, c), (a, c, d)]
+    return points, orient_outwards(points, triangles, (sx / 2, sy / 2, sz / 2))
+
+
+def thin_plate(thickness=0.002):
+    """A 1 x 1 plate far thinner than any target length: 8 vertices, 12 triangles."""
+    points = [(x, y, z) for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, thickness)]
+    quads = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    triangles = [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+    return points, orient_outwards(points, triangles, (0.5, 0.5, thickness / 2))
+
+
+def sliver_cylinder(around=48, radius=0.1, height=4.0):
+    """A closed cylinder whose side is one row of quads as tall as the cylinder: every side
+    triangle is a sliver (about 0.2 degrees), the caps are fans around a centre vertex."""
+    points = []
+    for z in (0.0, height):
+        for i in range(around):
+            a = 2 * math.pi * i / around
+            points.append((radius * math.cos(a), radius * math.sin(a), z))
+    points += [(0.0, 0.0, 0.0), (0.0, 0.0, height)]
+    triangles = []
+    for i in range(around):
+        j = (i + 1) % around
+        triangles += [(i, j, around + j), (i, around + j, around + i)]
+        triangles += [(2 * around, j, i), (2 * around + 1, around + i, around + j)]
+    return points, orient_outwards(points, triangles, (0.0, 0.0, height / 2))
+
+
+GENERATED = {"fan_bar.off": fan_bar, "thin_plate.off": thin_plate, "sliver_cylinder.off": sliver_cylinder}
+
+
+def generated_meshes(directory):
+    directory.mkdir(parents=True, exist_ok=True)
+    out = []
+    for name, make in GENERATED.items():
+        path = directory / name
+        if not path.exists():
+            write_off(path, *make())
+        out.append(Mesh(f"gen/{name}", path))
+    return out
+
+
+# ---- running -----------------------------------------------------------------------------------
+
+def file_hash(path):
+    h = hashlib.sha1()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()[:12]
+
+
+def run_capped(cmd, cpu_s, mem_mb, wall_s, stdout_path, stderr_path):
+    """Runs cmd under an address-space and CPU-time limit (prlimit) and a wall-clock limit.
+    Returns (status, wait_status, cpu seconds, peak RSS MB, wall seconds)."""
+    limited = ["prlimit", f"--as={int(mem_mb) * 1024 * 1024}", f"--cpu={int(math.ceil(cpu_s))}:{int(math.ceil(cpu_s)) + 2}",
+               "--"] + [str(c) for c in cmd]
+    with open(stdout_path, "wb") as out, open(stderr_path, "wb") as err:
+        start = time.monotonic()
+        proc = subprocess.Popen(limited, stdout=out, stderr=err, stdin=subprocess.DEVNULL)
+        fired = threading.Event()
+
+        def kill():
+            fired.set()
+            proc.kill()
+
+        timer = threading.Timer(wall_s, kill)
+        timer.start()
+        _, status, usage = os.wait4(proc.pid, 0)
+        timer.cancel()
+        proc.returncode = 0  # reaped by wait4; keep Popen from waiting again
+        wall = time.monotonic() - start
+    cpu = usage.ru_utime + usage.ru_stime
+    rss = usage.ru_maxrss / 1024.0
+    err_text = Path(stderr_path).read_text(errors="replace")
+    if fired.is_set():
+        return "TIME(wall)", status, cpu, rss, wall
+    if os.WIFSIGNALED(status):
+        sig = os.WTERMSIG(status)
+        # SIGXCPU comes only from the CPU limit (rusage may lag it by a tick); SIGKILL from its hard limit.
+        if sig == signal.SIGXCPU or (sig == signal.SIGKILL and cpu >= cpu_s - 0.5):
+            return "TIME", status, cpu, rss, wall
+        if "bad_alloc" in err_text or rss > 0.9 * mem_mb:
+            return "MEM", status, cpu, rss, wall
+        return f"CRASH({signal.Signals(sig).name})", status, cpu, rss, wall
+    code = os.WEXITSTATUS(status)
+    if code != 0:
+        if "bad_alloc" in err_text or "memory" in err_text.lower():
+            return "MEM", status, cpu, rss, wall
+        return f"EXIT{code}", status, cpu, rss, wall
+    return "ok", status, cpu, rss, wall
+
+
+def first_line(path):
+    lines = [l for l in Path(path).read_text(errors="replace").splitlines() if l.strip()]
+    return lines[0][:160] if lines else ""
+
+
+class Sweep:
+    def __init__(self, args):
+        self.bin = Path(args.bin).resolve()
+        self.stats_bin = Path(args.stats_bin).resolve()
+        self.cpu_cap, self.mem_cap = args.cpu_cap, args.mem_cap
+        self.samples = args.samples
+        self.results = Path(args.results) if args.results else DATA / "sweep" / file_hash(self.bin)
+        self.results.mkdir(parents=True, exist_ok=True)
+        self.probes = DATA / "sweep" / "inputs" / file_hash(self.stats_bin)
+        self.probes.mkdir(parents=True, exist_ok=True)
+        self.fresh = args.fresh
+        self.tmp = Path(tempfile.mkdtemp(prefix="adasculpt-sweep-"))
+        atexit.register(shutil.rmtree, self.tmp, True)
+        self.lock = threading.Lock()
+
+    def repro(self, mesh, setting):
+        return (f"prlimit --as={self.mem_cap * 1024 * 1024} --cpu={int(self.cpu_cap)} {self.bin} remesh "
+                f"{mesh.path} /tmp/out.off " + " ".join(setting.args))
+
+    def probe(self, mesh):
+        """The input's figures (or why it is skipped), cached per file content."""
+        key = self.probes / f"{file_hash(mesh.path)}.json"
+        if key.exists() and not self.fresh:
+            return json.loads(key.read_text())
+        out, err = self.tmp / f"probe-{os.getpid()}-{threading.get_ident()}.out", self.tmp / f"probe-{threading.get_ident()}.err"
+        status, *_ = run_capped([self.stats_bin, "stats", mesh.path, "--json", "--self-intersections"],
+                                120, 8192, 300, out, err)
+        info = {"mesh": str(mesh.path)}
+        warnings = [l for l in Path(err).read_text(errors="replace").splitlines() if l.strip()]
+        if status != "ok":
+            info["skip"] = f"loader: {first_line(err) or status}"
+        elif any("non-manifold" in w for w in warnings):
+            info["skip"] = "non-manifold (repaired by the loader): " + next(w for w in warnings if "non-manifold" in w)[:160]
+        else:
+            s = json.loads(Path(out).read_text())
+            if s.get("faces", 0) < 1:
+                info["skip"] = "no faces"
+            else:
+                info.update(vertices=s["vertices"], faces=s["faces"], boundary_loops=s["boundary_loops"],
+                            components=s["components"], si=s["self_intersecting_pairs"],
+                            si_capped=s["self_intersections_capped"], min_angle=s["min_angle_deg"],
+                            warnings=warnings[:3])
+        key.write_text(json.dumps(info))
+        return info
+
+    def run(self, mesh, setting, input_info):
+        key = self.results / f"{mesh.name.replace('/', '__')}__{setting.name}.json"
+        if key.exists() and not self.fresh:
+            return json.loads(key.read_text())
+        tag = f"{threading.get_ident()}"
+        out_mesh = self.tmp / f"out-{tag}.off"
+        so, se = self.tmp / f"remesh-{tag}.out", self.tmp / f"remesh-{tag}.err"
+        if out_mesh.exists():
+            out_mesh.unlink()
+        # The cap is on CPU time, which a loaded machine does not inflate; the wall-clock limit
+        # only guards against a process that sleeps or waits forever.
+        status, _, cpu, rss, wall = run_capped([self.bin, "remesh", mesh.path, out_mesh] + setting.args,
+                                               self.cpu_cap, self.mem_cap, 30 * self.cpu_cap + 60, so, se)
+        r = {"mesh": mesh.name, "path": str(mesh.path), "setting": setting.name, "status": status,
+             "cpu_s": round(cpu, 3), "rss_mb": round(rss, 1), "wall_s": round(wall, 3),
+             "note": first_line(se), "input_vertices": input_info["vertices"], "input_si": input_info["si"]}
+        m = re.search(r"in ([0-9.]+) ms", Path(so).read_text(errors="replace"))
+        r["remesh_ms"] = float(m.group(1)) if m else round(wall * 1000, 1)
+        if status == "ok":
+            mo, me = self.tmp / f"stats-{tag}.out", self.tmp / f"stats-{tag}.err"
+            st, *_ = run_capped([self.stats_bin, "stats", out_mesh, "--reference", mesh.path, "--json",
+                                 "--self-intersections", "--samples", str(self.samples)], 300, 16384, 900, mo, me)
+            if st != "ok":
+                r["status"] = f"MEASURE-{st}"
+                r["note"] = first_line(me)
+            else:
+                s = json.loads(Path(mo).read_text())
+                r.update(vertices=s["vertices"], faces=s["faces"], min_angle=s["min_angle_deg"],
+                         mean_min_angle=s["mean_min_angle_deg"], hausdorff_pct=100 * s["hausdorff_rel"],
+                         output_si=s["self_intersecting_pairs"], si_capped=s["self_intersections_capped"],
+                         genus=s["genus"], boundary_loops=s["boundary_loops"])
+                r["new_si"] = r["output_si"] - input_info["si"]
+        key.write_text(json.dumps(r))
+        return r
+
+
+# ---- judging -----------------------------------------------------------------------------------
+
+def failures(results, settings_by_name, sweep):
+    """Every miss of the issue's hard targets: (kind, severity for sorting, mesh, setting, text)."""
+    out = []
+    for r in results:
+        s = settings_by_name[r["setting"]]
+        if r["status"] != "ok":
+            sev = 1e9 if r["status"].startswith(("TIME", "MEM", "CRASH")) else 1e8
+            out.append(("cap/crash", sev, r, f"{r['status']} after {r['cpu_s']:.1f} s CPU, {r['rss_mb']:.0f} MB"
+                        + (f" — {r['note']}" if r["note"] else "")))
+            continue
+        if r["new_si"] > 0:
+            out.append(("new crossings", r["new_si"], r, f"{r['new_si']} new self-intersecting pairs"
+                        + (" (capped)" if r["si_capped"] else "")))
+        if r["hausdorff_pct"] > s.bound_pct:
+            out.append(("hausdorff", r["hausdorff_pct"] / s.bound_pct, r,
+                        f"Hausdorff {r['hausdorff_pct']:.3g} % > {s.bound_pct:g} %"))
+    # Coarser settings must never give more vertices: epsilon and min length (adaptive), length (uniform).
+    done = {(r["mesh"], r["setting"]): r for r in results if r["status"] == "ok"}
+    worst_monotone = {}  # (mesh, coarser setting) -> (ratio, result, text)
+    for (mesh, name), r in done.items():
+        s = settings_by_name[name]
+        for other_name, o in settings_by_name.items():
+            q = done.get((mesh, other_name))
+            if q is None or o.kind != s.kind or o.features != s.features or o is s:
+                continue
+            if s.kind == "adaptive":
+                coarser = (o.epsilon >= s.epsilon and o.min_length >= s.min_length)
+            else:
+                coarser = o.length >= s.length
+            if coarser and q["vertices"] > r["vertices"]:
+                ratio = q["vertices"] / max(1, r["vertices"])
+                key = (mesh, other_name)
+                if ratio > worst_monotone.get(key, (0,))[0]:
+                    worst_monotone[key] = (ratio, q, f"{q['vertices']} vertices > {r['vertices']} at the finer {name}")
+    out += [("monotone", ratio, q, text) for ratio, q, text in worst_monotone.values()]
+    out.sort(key=lambda f: -f[1])
+    return out
+
+
+def fmt(v, spec):
+    return "—" if v is None else format(v, spec)
+
+
+def table(results):
+    lines = ["| mesh | setting | ms | CPU s | MB | V in | V out | min ∠ | mean min ∠ | Hausdorff % diag | "
+             "SI in | new SI | status |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+    for r in results:
+        lines.append(
+            f"| {r['mesh']} | {r['setting']} | {r['remesh_ms']:.0f} | {r['cpu_s']:.2f} | {r['rss_mb']:.0f} | "
+            f"{r['input_vertices']} | {fmt(r.get('vertices'), 'd')} | {fmt(r.get('min_angle'), '.2f')} | "
+            f"{fmt(r.get('mean_min_angle'), '.2f')} | {fmt(r.get('hausdorff_pct'), '.3f')} | {r['input_si']} | "
+            f"{fmt(r.get('new_si'), 'd')} | {r['status']} |")
+    return "\n".join(lines)
+
+
+def summary(results, fails, skipped, sweep, settings_by_name, limit):
+    lines = []
+    n = len(results)
+    by_kind = {}
+    for kind, _, r, text in fails:
+        by_kind.setdefault(kind, []).append((r, text))
+    ok = sum(r["status"] == "ok" for r in results)
+    low_angle = [r for r in results if r["status"] == "ok" and r["min_angle"] < MIN_ANGLE_GOAL]
+    lines.append(f"runs: {n} ({ok} finished under the caps of {sweep.cpu_cap:g} s CPU / {sweep.mem_cap} MB)")
+    for kind in ("cap/crash", "new crossings", "hausdorff", "monotone"):
+        runs = {(r["mesh"], r["setting"]) for r, _ in by_kind.get(kind, [])}
+        lines.append(f"  {kind:14s} {len(runs)} runs fail")
+    lines.append(f"  min angle < {MIN_ANGLE_GOAL:g}° (reported, not judged: features may force it): {len(low_angle)} runs")
+    if skipped:
+        lines.append(f"skipped meshes: {len(skipped)}")
+        for name, why in skipped:
+            lines.append(f"  {name}: {why}")
+    if fails:
+        lines.append(f"worst failures (up to {limit} per kind; reproduce with the command):")
+        for kind in ("cap/crash", "new crossings", "hausdorff", "monotone"):
+            for r, text in by_kind.get(kind, [])[:limit]:
+                lines.append(f"  [{kind}] {r['mesh']} {r['setting']}: {text}")
+                lines.append(f"      {sweep.repro(Mesh(r['mesh'], r['path']), settings_by_name[r['setting']])}")
+    return "\n".join(lines)
+
+
+# ---- main --------------------------------------------------------------------------------------
+
+# The fast sample (ctest RemeshSweepSample): small meshes and the settings that exposed each failure mode of
+# issue 17 on main f486e7c: an epsilon series (coarser must not mean more vertices), a tiny min length (the
+# runaway), features 45 on thin parts and sharp edges, uniform lengths. Clean meshes keep it honest both ways.
+SAMPLE_SETTINGS = ["eps0.5-min0.2-f0", "eps2-min0.2-f0", "eps5-min0.2-f0", "eps1-min0.02-f0", "eps0.5-min0.2-f45",
+                   "len2-f0", "len8-f45"]
+SAMPLE_MESHES = ["repo/eight.off", "repo/fandisk.off", "gen/fan_bar.off", "gen/thin_plate.off",
+                 "gen/sliver_cylinder.off", "cgal/elephant-with-holes.off", "cgal/pinion_small.off"]
+
+
+def main():
+    ap = argparse.ArgumentParser(prog="sweep-remesh.sh", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bin", default=os.environ.get("ADASCULPT_BIN", str(REPO / "build/native/adasculpt")),
+                    help="the adasculpt binary whose remesher is swept (env ADASCULPT_BIN)")
+    ap.add_argument("--stats-bin", default=os.environ.get("ADASCULPT_STATS_BIN", str(REPO / "build/native/adasculpt")),
+                    help="the adasculpt binary that measures (needs stats --self-intersections)")
+    ap.add_argument("--meshes", default="", help="regex on mesh names (cgal/..., shared/..., repo/..., gen/...)")
+    ap.add_argument("--settings", default="", help="regex on setting names (e.g. 'eps(1|2)-min0.2-f0|len')")
+    ap.add_argument("-j", "--jobs", type=int, default=2)
+    ap.add_argument("-o", "--output", help="also write the table and summary to this file")
+    ap.add_argument("--doc", help="write a markdown page (table + summary + command) to this file")
+    ap.add_argument("--sample", action="store_true", help="the fast sample of npm test: few meshes and settings")
+    ap.add_argument("--check", action="store_true", help="exit 1 when any hard target fails")
+    ap.add_argument("--cpu-cap", type=float, default=CPU_CAP_S, help="CPU seconds per remesh run")
+    ap.add_argument("--mem-cap", type=int, default=MEM_CAP_MB, help="address space MB per remesh run")
+    ap.add_argument("--samples", type=int, default=100000, help="area samples per direction for the Hausdorff distance")
+    ap.add_argument("--results", help="result cache directory (default: $ADASCULPT_DATA/sweep/<binary hash>)")
+    ap.add_argument("--fresh", action="store_true", help="ignore cached results")
+    ap.add_argument("--no-fetch", action="store_true", help="do not download the CGAL meshes when missing")
+    ap.add_argument("--no-table", action="store_true", help="print only the summary")
+    ap.add_argument("--list", action="store_true", help="list meshes (with skip reasons) and the run count, run nothing")
+    ap.add_argument("--worst", type=int, default=15, help="failures listed per kind in the summary")
+    args = ap.parse_args()
+
+    for b in (args.bin, args.stats_bin):
+        if not os.access(b, os.X_OK):
+            sys.exit(f"sweep: {b} not found or not executable (bash scripts/build.sh native)")
+    settings = all_settings()
+    shared = Path(os.environ.get("ADASCULPT_SHARED_MESHES", REPO.parent / "shared" / "meshes"))
+    sweep = Sweep(args)
+    if args.sample:
+        meshes = meshes_in(REPO / "tests" / "data" / "meshes", "repo") + generated_meshes(DATA / "sweep" / "generated")
+        cgal = cgal_dir(fetch=not args.no_fetch)
+        if cgal is None:
+            print("sweep: sample runs without the CGAL meshes (not cached and not downloadable)")
+        meshes += meshes_in(cgal, "cgal")
+        meshes = [m for m in meshes if m.name in SAMPLE_MESHES]
+        settings = [s for s in settings if s.name in SAMPLE_SETTINGS]
+    else:
+        meshes = meshes_in(cgal_dir(fetch=not args.no_fetch), "cgal") + meshes_in(shared, "shared")
+        if not shared.is_dir():
+            print(f"sweep: {shared} not found: shared meshes skipped")
+    if args.meshes:
+        meshes = [m for m in meshes if re.search(args.meshes, m.name)]
+    if args.settings:
+        settings = [s for s in settings if re.search(args.settings, s.name)]
+    settings_by_name = {s.name: s for s in settings}
+
+    with concurrent.futures.ThreadPoolExecutor(max(1, args.jobs)) as pool:
+        infos = dict(zip((m.name for m in meshes), pool.map(sweep.probe, meshes)))
+    skipped = [(m.name, infos[m.name]["skip"]) for m in meshes if "skip" in infos[m.name]]
+    usable = [m for m in meshes if "skip" not in infos[m.name]]
+    runs = [(m, s) for m in usable for s in settings]
+    print(f"sweep: {len(usable)} meshes x {len(settings)} settings = {len(runs)} runs "
+          f"({len(skipped)} meshes skipped); remesh binary {sweep.bin}, results in {sweep.results}", file=sys.stderr)
+    if args.list:
+        for m in usable:
+            i = infos[m.name]
+            print(f"{m.name}: V {i['vertices']} F {i['faces']} loops {i['boundary_loops']} SI {i['si']}")
+        for name, why in skipped:
+            print(f"{name}: SKIP {why}")
+        return 0
+
+    order = {(m.name, s.name): k for k, (m, s) in enumerate(runs)}
+    results, done, t0 = [], 0, time.monotonic()
+    with concurrent.futures.ThreadPoolExecutor(max(1, args.jobs)) as pool:
+        futures = {pool.submit(sweep.run, m, s, infos[m.name]): (m, s) for m, s in runs}
+        for f in concurrent.futures.as_completed(futures):
+            results.append(f.result())
+            done += 1
+            if done % 25 == 0 or done == len(runs):
+                print(f"sweep: {done}/{len(runs)} runs ({time.monotonic() - t0:.0f} s)", file=sys.stderr)
+    results.sort(key=lambda r: order[(r["mesh"], r["setting"])])
+    fails = failures(results, settings_by_name, sweep)
+    text = ("" if args.no_table else table(results) + "\n\n") + summary(results, fails, skipped, sweep,
+                                                                         settings_by_name, args.worst)
+    print(text)
+    if args.output:
+        Path(args.output).write_text(text + "\n")
+    if args.doc:
+        write_doc(Path(args.doc), sys.argv[1:], sweep, results, fails, skipped, settings_by_name, len(meshes))
+    return 1 if args.check and fails else 0
+
+
+def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, n_meshes):
+    git = subprocess.run(["git", "-C", str(sweep.bin.parent), "log", "-1", "--format=%h %s"],
+                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+    body = [
+        "# Remeshing robustness sweep",
+        "",
+        "Generated by `scripts/sweep-remesh.sh` (do not edit by hand). Every closed or bordered manifold mesh of",
+        "Debian's `libcgal-demo` (fetched by `scripts/fetch-cgal-meshes.sh`, never committed) and of `../shared/meshes`,",
+        "remeshed at every setting of issue 17, each run capped at "
+        f"{sweep.cpu_cap:g} s CPU and {sweep.mem_cap} MB address space, measured by",
+        "`adasculpt stats --reference INPUT --self-intersections` (exact self-intersection test, CGAL's definition;",
+        "\"new SI\" = output pairs minus input pairs; Hausdorff relative to the input's bounding-box diagonal).",
+        "",
+        "Regenerate:",
+        "",
+        "```",
+        "bash scripts/sweep-remesh.sh " + " ".join(argv),
+        "```",
+        "",
+        f"Remesh binary: `{sweep.bin}` ({git or 'unknown commit'}), generated {time.strftime('%Y-%m-%d %H:%M %Z')}.",
+        "",
+        "## Summary",
+        "",
+        "```",
+        summary(results, fails, skipped, sweep, settings_by_name, 10),
+        "```",
+        "",
+        "## All runs",
+        "",
+        table(results),
+        "",
+    ]
+    path.write_text("\n".join(body))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
