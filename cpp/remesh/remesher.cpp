@@ -103,6 +103,9 @@ IterationStats Remesher::iterate() {
   }
   m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
   m.region_calls_since_sizing = 0;
+  // The warning speaks of the mesh as it is now: a split cascade the budget cut short in an early
+  // iteration (needles of a coarse CAD input) that later iterations completed is no news.
+  m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
   m.leave_whole_mesh();

@@ -57,8 +57,8 @@ struct RemeshReport {
   // The vertex budget: kBudgetPerEstimate x estimate + kBudgetPerInputVertex x input + a constant,
   // capped at options.max_vertices.
   size_t vertex_budget = 0;
-  // Empty, or one line for the user: the mesh hit its budget and splitting stopped (the result is
-  // the valid mesh reached so far).
+  // Empty, or one line for the user: in the last iteration the mesh hit its budget and splitting
+  // stopped (the result is the valid mesh reached so far).
   std::string warning;
 };
 
@@ -97,7 +97,7 @@ class Remesher {
   // The mesh changed outside the remesher's control (e.g. deformation or a new load):
   // the reference surface is rebuilt from the current mesh on the next whole-mesh iteration.
   void reset_reference();
-  // Estimate, budget and warning of the whole-mesh iterations since the reference was built.
+  // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
   const RemeshOptions& options() const;
   void set_options(const RemeshOptions& options);
