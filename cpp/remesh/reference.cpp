@@ -146,7 +146,11 @@ void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices)
     int n_ends = 0;
     for (Halfedge h : mesh.halfedges(v)) {
       Vertex w = mesh.to_vertex(h);
-      if (vclass[w] == kFree) {
+      // Only measured neighbours: outside a sculpting frame's region a vertex may never have been
+      // (sizing 0). Taking its 0 gave a held feature vertex on the region's border a zero target,
+      // every edge at it was split again each frame, and a strip of 0.4 degree slivers grew where the
+      // border of a twisted bar's region meets its sharp edges.
+      if (vclass[w] == kFree && sizing[w] > 0) {
         smallest = std::min(smallest, sizing[w]);
         ++n;
       }
