@@ -303,6 +303,30 @@ std::array<double, 4> radial_biharmonic(double a) {
 
 // The carried field's starting point at the first frame: the radial profile of the geodesic
 // distance between the handle's rim and the ROI's.
+// The ROI again on the current surface, as the paper measures it every frame (a pulled surface
+// stretches, so the geodesic disc holds fewer vertices). The carried field moves to the new
+// region: values of vertices still free are rescaled so that they fall to 0 where the region
+// now ends (no step in the blending between the new border and the old values), new free
+// vertices take the radial profile; the next exact solve then replaces them.
+void HandleDeformer::refresh_region(const SurfaceMesh& mesh) {
+  if (++refresh_id_ == 0) {
+    std::fill(refresh_stamp_.begin(), refresh_stamp_.end(), 0);
+    refresh_id_ = 1;
+  }
+  for (Vertex v : free_) refresh_stamp_[v.idx] = refresh_id_;  // free before: field_ holds a value
+  compute_region(mesh);
+  double border = 0;  // the largest value of a vertex that left the ROI
+  for (Vertex v : fixed_)
+    if (refresh_stamp_[v.idx] == refresh_id_) border = std::max(border, field_[v.idx]);
+  carried_.resize(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) carried_[i] = field_[free_[i].idx];
+  start_from_radial_profile();  // every free vertex; those that were free before get theirs back
+  const double scale = border < 1 ? 1.0 / (1.0 - border) : 0.0;
+  for (size_t i = 0; i < free_.size(); ++i)
+    if (refresh_stamp_[free_[i].idx] == refresh_id_)
+      field_[free_[i].idx] = std::clamp((carried_[i] - border) * scale, 0.0, 1.0);
+}
+
 void HandleDeformer::start_from_radial_profile() {
   const double outer = std::max(roi_radius_used_, 1e-300);
   double rim = handle_radius_used_;
@@ -453,6 +477,7 @@ StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total
     if (result_.field_refreshed) {
       apply_refresh(mesh);
       ++result_.field_refreshes;
+      refresh_region(mesh);
       start_refresh(mesh);
     }
     result_.field_ms = ms_since(t);

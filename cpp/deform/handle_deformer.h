@@ -12,8 +12,8 @@
 //     current surface (biharmonic_solver.h). Two ways (DeformOptions::field_solve):
 //     - EveryFrame, as in the paper: ROI and field recomputed from scratch every frame (a sparse
 //       factorisation, 50-100 ms on a 10k-vertex ROI: the frame-time tail of issue 18).
-//     - Carried (default): the ROI is computed once, at the first frame, and then carried
-//       through the edits (it stays on the surface the sculptor picked): vertices the remesher
+//     - Carried (default): ROI and field are carried through the edits between refreshes
+//       (below; the ROI is measured again on the current surface at each): vertices the remesher
 //       removes leave, vertices it adds take the mean of their known neighbours (a split's new
 //       vertex sits between its edge's ends), a collapse's survivor keeps its value, the
 //       refinement's midpoints keep the refinement's estimate. The field starts from the
@@ -21,7 +21,8 @@
 //       on a flat disc) and is replaced, again and again, by exact solves of the current region
 //       on the current surface, each spread over several frames (BiharmonicSolver's amortised
 //       solve, field_budget_ms per frame): no frame pays for a whole factorisation, and the
-//       field is at most one solve's duration behind the surface. Warm-started CG on the
+//       field is at most one solve's duration behind the surface (about 10 frames for a
+//       10k-vertex ROI at the default budget). Warm-started CG on the
 //       bi-Laplacian was tried first and dropped: with a Jacobi preconditioner 30 steps a frame
 //       left a field error of 0.08 after 60 frames (it only removes local error; the
 //       bi-Laplacian's condition number grows as h^-4).
@@ -128,6 +129,7 @@ class HandleDeformer {
   void assemble_system(const SurfaceMesh& mesh);
   void compute_field(const SurfaceMesh& mesh);
   void start_refresh(const SurfaceMesh& mesh);
+  void refresh_region(const SurfaceMesh& mesh);
   void apply_refresh(const SurfaceMesh& mesh);
   void store_field();
   void start_from_radial_profile();
@@ -161,7 +163,8 @@ class HandleDeformer {
   // The amortised solve in progress: its free vertices and rows, stamped refresh_id_.
   std::vector<Vertex> refresh_free_, refresh_rows_;
   std::vector<std::uint32_t> refresh_stamp_;
-  std::uint32_t refresh_id_ = 0;  // the system's rows of the last assembly (their row_index_ is set)
+  std::uint32_t refresh_id_ = 0;
+  std::vector<double> carried_;  // refresh_region's scratch  // the system's rows of the last assembly (their row_index_ is set)
   // Per vertex slot, valid when stamp_ == frame_ (never cleared in full).
   std::vector<std::uint32_t> stamp_;
   std::vector<std::uint8_t> category_;

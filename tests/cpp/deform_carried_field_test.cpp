@@ -146,7 +146,7 @@ TEST(DeformCarriedField, CarriedPullStaysCloseToTheEveryFrameSolve) {
   for (Vertex v : carried.vertices()) top_z_carried = std::max(top_z_carried, carried.position(v).z);
   RecordProperty("max_distance_over_pull", std::to_string(worst / pull));
   EXPECT_NEAR(top_z_carried, top_z_every, 1e-3);  // the handle goes where the pointer goes
-  EXPECT_LT(worst, 0.1 * pull) << "carried surface farther than 10% of the pull from the every-frame one";
+  EXPECT_LT(worst, 0.05 * pull) << "carried surface farther than 5% of the pull from the every-frame one";  // 1.7% measured
 }
 
 TEST(DeformCarriedField, RoiIsCutToTheVertexBudgetAndSaysSo) {
