@@ -8,6 +8,7 @@ export GLIBC_TUNABLES=glibc.malloc.mmap_threshold=1073741824:glibc.malloc.trim_t
 out=$(mktemp)
 build/native/adasculpt_bench --benchmark_filter=Pull | grep '^pull' >"$out"
 bash scripts/bench-pull-wasm.sh | grep '^pull' >>"$out" || true
+mkdir -p docs
 {
   echo "# Frame time of a pull (issue 18)"
   echo

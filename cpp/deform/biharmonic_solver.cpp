@@ -202,13 +202,17 @@ struct AmortizedLdlt {
     std::fill(flag.begin(), flag.end(), -1);
     next_row = 0;
   }
-  // Rows [next_row, end) of L and D.
-  void numeric(int end) {
+  // Rows of L and D from next_row on, until `allowance` multiply-adds are done (at least one
+  // row); returns the multiply-adds done.
+  double numeric(double allowance) {
     const int n = int(upper.cols());
     const int* cp = upper.outerIndexPtr();
     const int* ci = upper.innerIndexPtr();
     const double* cx = upper.valuePtr();
-    for (int k = next_row; k < end; ++k) {
+    double work = 0;
+    int k = next_row;
+    for (; k < n && (k == next_row || work < allowance); ++k) {
+      work += cp[k + 1] - cp[k];
       int top = n;
       flag[k] = k;
       for (int p = cp[k]; p < cp[k + 1]; ++p) {
@@ -228,6 +232,7 @@ struct AmortizedLdlt {
         const double yi = y[i];
         y[i] = 0.0;
         const int p_end = lp[i] + lnz[i];
+        work += lnz[i] + 1;
         for (int p = lp[i]; p < p_end; ++p) y[li[p]] -= lx[p] * yi;
         const double l_ki = yi / d[i];
         d[k] -= l_ki * yi;
@@ -238,7 +243,8 @@ struct AmortizedLdlt {
       if (d[k] == 0 || !std::isfinite(d[k]))  // (as Eigen's LDLT: only a zero pivot fails)
         throw std::runtime_error("biharmonic field: factorisation failed (degenerate region of interest)");
     }
-    next_row = end;
+    next_row = k;
+    return work;
   }
   void solve() {
     const int n = int(upper.cols());
@@ -266,13 +272,15 @@ void BiharmonicSolver::begin_amortized(const BiharmonicSystem& system) {
   j.stage = AmortizedLdlt::kAssemble;
 }
 
-bool BiharmonicSolver::advance_amortized(double budget_ms) {
+// Work is counted in multiply-adds (estimated for the steps that run in one piece), not in time,
+// so that a grab gives the same result on every machine and in WebAssembly (replays are exact).
+bool BiharmonicSolver::advance_amortized(double work_budget) {
   if (!impl_->amortized) return false;
   AmortizedLdlt& j = *impl_->amortized;
-  const auto start = Clock::now();
+  double used = 0;
   bool worked = false;
   try {
-    while (j.stage != AmortizedLdlt::kDone && j.stage != AmortizedLdlt::kIdle && (!worked || ms_since(start) < budget_ms)) {
+    while (j.stage != AmortizedLdlt::kDone && j.stage != AmortizedLdlt::kIdle && (!worked || used < work_budget)) {
       worked = true;
       switch (j.stage) {
         case AmortizedLdlt::kAssemble:
@@ -283,25 +291,26 @@ bool BiharmonicSolver::advance_amortized(double budget_ms) {
             break;
           }
           j.assemble();
+          used += 8.0 * double(j.system.value.size());
           j.stage = AmortizedLdlt::kOrder;
           break;
         case AmortizedLdlt::kOrder:
           j.order();
+          used += 20.0 * double(j.a.nonZeros());
           j.stage = AmortizedLdlt::kSymbolic;
           break;
         case AmortizedLdlt::kSymbolic:
           j.symbolic();
+          used += double(j.lp.back()) + double(j.upper.nonZeros());
           j.stage = AmortizedLdlt::kNumeric;
           break;
-        case AmortizedLdlt::kNumeric: {
-          // Rows in small batches between clock reads.
-          const int n = int(j.upper.cols());
-          j.numeric(std::min(n, j.next_row + 64));
-          if (j.next_row == n) j.stage = AmortizedLdlt::kSolve;
+        case AmortizedLdlt::kNumeric:
+          used += j.numeric(std::max(0.0, work_budget - used));
+          if (j.next_row == int(j.upper.cols())) j.stage = AmortizedLdlt::kSolve;
           break;
-        }
         case AmortizedLdlt::kSolve:
           j.solve();
+          used += 2.0 * double(j.lp.back()) + double(j.system.value.size());
           j.stage = AmortizedLdlt::kDone;
           break;
         default:

@@ -21,7 +21,9 @@
 //
 // The amortised solve (the carried field's refresh in a grab, see handle_deformer.h) is exact too
 // but spread over calls: begin_amortized() takes a copy of the system, and each
-// advance_amortized(budget) works on it for about `budget` milliseconds: the product matrix, a
+// advance_amortized(budget) works on it for about `budget` multiply-adds (counted, not timed, so
+// that results do not depend on the machine's speed: a replay is the same natively and in
+// WebAssembly; 1e6 is roughly 1 ms natively): the product matrix, a
 // fill-reducing ordering (Eigen's AMD), the symbolic analysis, then rows of an up-looking LDL^T
 // factorisation (our own, so that it can stop after any row and go on at the next call), then the
 // triangular solves. No frame of a grab pays for a whole factorisation.
@@ -73,9 +75,10 @@ class BiharmonicSolver {
              std::vector<double>* laplacian = nullptr);
   // Amortised solve of a copy of `system` (see above); a running one is abandoned.
   void begin_amortized(const BiharmonicSystem& system);
-  // Works for about budget_ms (at least one step); true once the solution is ready. Throws
-  // std::runtime_error on a degenerate region, as solve() does.
-  bool advance_amortized(double budget_ms);
+  // Works for about work_budget multiply-adds (at least one step; the steps that run in one piece
+  // count an estimate); true once the solution is ready. Throws std::runtime_error on a
+  // degenerate region, as solve() does.
+  bool advance_amortized(double work_budget);
   bool amortized_running() const;
   void cancel_amortized();
   // Once advance_amortized() returned true: the free values and, per row, the Laplacian of the

@@ -473,7 +473,7 @@ StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total
     // The refresh: a first one starts with the grab, each finished one is applied and the next
     // one starts on the current surface.
     if (first_frame_ || !solver_.amortized_running()) start_refresh(mesh);
-    result_.field_refreshed = solver_.advance_amortized(options_.field_budget_ms);
+    result_.field_refreshed = solver_.advance_amortized(options_.field_work_per_frame);
     if (result_.field_refreshed) {
       apply_refresh(mesh);
       ++result_.field_refreshes;

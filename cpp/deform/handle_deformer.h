@@ -20,7 +20,7 @@
 //       rotationally symmetric biharmonic profile of the geodesic distance (the exact solution
 //       on a flat disc) and is replaced, again and again, by exact solves of the current region
 //       on the current surface, each spread over several frames (BiharmonicSolver's amortised
-//       solve, field_budget_ms per frame): no frame pays for a whole factorisation, and the
+//       solve, field_work_per_frame each frame): no frame pays for a whole factorisation, and the
 //       field is at most one solve's duration behind the surface (about 10 frames for a
 //       10k-vertex ROI at the default budget). Warm-started CG on the
 //       bi-Laplacian was tried first and dropped: with a Jacobi preconditioner 30 steps a frame
@@ -54,9 +54,10 @@ enum class FieldSolve {
 
 struct DeformOptions {
   FieldSolve field_solve = FieldSolve::Carried;
-  // Carried: the time each frame gives the amortised exact solve (milliseconds; at least one
-  // step of it runs per frame, the longest being the ordering of a 10k-vertex ROI, ~3 ms).
-  double field_budget_ms = 3.0;
+  // Carried: the work each frame gives the amortised exact solve, in multiply-adds (counted, not
+  // timed, so that a grab is reproducible; 3e6 is about 2-3 ms natively). At least one step of
+  // it runs per frame, the longest being the ordering of a 10k-vertex ROI (~3 ms).
+  double field_work_per_frame = 3e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;
   // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).
