@@ -336,7 +336,8 @@ export async function createSculptApp(container, options = {}) {
       return h && h.hit ? new THREE.Vector3(h.x, h.y, h.z) : null;
     },
     begin(center) { guard(() => api.grab.begin({ center: center.toArray() })); },
-    drag(t) { guard(() => api.grab.drag(t)); },
+    drag(t) { return guard(() => api.grab.drag(t)); },
+    notify: (message) => toaster.show(message),
     end() { guard(() => api.grab.end()); },
     radii,
     scaleRadii(fh, fr) {

@@ -9,8 +9,8 @@ import * as THREE from 'three';
 import { bindToolEvents, isTextInput } from './tool-events.js';
 
 export class GrabTool {
-  // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform), end(), radii(),
-  //         scaleRadii(handleFactor, roiFactor), busy() }
+  // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform) -> {timings}|undefined, end(),
+  //         radii(), scaleRadii(handleFactor, roiFactor), busy(), notify(message) }
   constructor(viewer, core, keyTarget) {
     this.viewer = viewer;
     this.core = core;
@@ -54,7 +54,7 @@ export class GrabTool {
       mode: 'translate',
       translate: new THREE.Vector3(),
       offset: new THREE.Vector3(), // translation frozen while rotating/scaling
-      degrees: 0, scale: 1,
+      degrees: 0, scale: 1, cappedShown: false,
       modeX: e.clientX, modeStartValue: 0,
       x: e.clientX, y: e.clientY,
     };
@@ -161,7 +161,12 @@ export class GrabTool {
     if (this.grab) {
       if (this.dirty) {
         this.dirty = false;
-        this.core.drag(this.transform());
+        const t = this.core.drag(this.transform())?.timings;
+        // The core cut the region of interest to its vertex budget: say so once per grab.
+        if (t?.roiCapped && !this.grab.cappedShown) {
+          this.grab.cappedShown = true;
+          this.core.notify?.(`Region of interest limited to ${t.roiVertices} vertices (smaller than asked) to keep dragging fluid`);
+        }
         this.updateBrush();
       }
     } else if (this.enabled && this.hoverPending && this.hover && this.pointerInside && !this.core.busy()) {

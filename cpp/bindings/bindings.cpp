@@ -356,6 +356,8 @@ class SessionHandle {
     ms.set("total", t.total_ms);
     ms.set("buffers", buffers_ms_);
     ms.set("stamps", t.stamps);
+    ms.set("roiCapped", t.roi_capped);  // the grab's ROI was cut to its vertex budget
+    ms.set("roiVertices", t.roi_vertices);
     r.set("timings", ms);
     return r;
   }

@@ -23,6 +23,8 @@ namespace {
 struct ReplayOptions {
   std::string in, session, out;
   bool json = false;
+  std::string field_solve = "carried";
+  long long roi_max_vertices = -1;  // -1: the default budget
 };
 
 void run_replay(const ReplayOptions& o) {
@@ -45,6 +47,9 @@ void run_replay(const ReplayOptions& o) {
 
   std::vector<std::string> warnings;
   sculpt::Session session;
+  deform::DeformOptions& grab = session.grab_options();
+  grab.field_solve = o.field_solve == "every-frame" ? deform::FieldSolve::EveryFrame : deform::FieldSolve::Carried;
+  if (o.roi_max_vertices >= 0) grab.max_roi_vertices = size_t(o.roi_max_vertices);
   session.load(load_input(o.in, warnings));
   print_warnings(warnings);
   const nlohmann::json report = session.replay(j);
@@ -61,6 +66,8 @@ void run_replay(const ReplayOptions& o) {
               report["roi_ms_median"].get<double>(), report["field_ms_median"].get<double>(),
               report["refine_ms_median"].get<double>(), report["deform_ms_median"].get<double>(),
               report["remesh_ms_median"].get<double>());
+  if (report["roi_capped"].get<bool>())
+    std::printf("  ROI cut to the vertex budget (%zu vertices; --roi-max-vertices)\n", session.grab_options().max_roi_vertices);
   std::printf("  vertices / faces           %zu / %zu\n", report["vertices"].get<size_t>(),
               report["faces"].get<size_t>());
   std::printf("  min angle / mean min angle %.4f / %.4f deg\n", report["min_angle_deg"].get<double>(),
@@ -76,6 +83,12 @@ void register_replay(CLI::App& app) {
   cmd->add_option("SESSION", options->session, "session file (JSON, version 1)")->required();
   cmd->add_option("OUT", options->out, "output mesh (format from the extension)")->required();
   cmd->add_flag("--json", options->json, "print the replay report as one JSON object");
+  cmd->add_option("--field-solve", options->field_solve,
+                  "grab field: carried (default; exact solves spread over frames) or every-frame (the paper)")
+      ->check(CLI::IsMember({"carried", "every-frame"}));
+  cmd->add_option("--roi-max-vertices", options->roi_max_vertices,
+                  "vertex budget of a grab's region of interest (0 = none; default 20000)")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([options] { run_replay(*options); });
 }
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -25,12 +27,15 @@ void BiharmonicSystem::clear(int free, int rows) {
   known_rhs.assign(rows, 0.0);
 }
 
+struct AmortizedLdlt;
+
 struct BiharmonicSolver::Impl {
   Eigen::SimplicialLDLT<SpMat> ldlt;
   bool has_pattern = false, has_factor = false;
   std::vector<SpMat::StorageIndex> outer, inner;  // pattern of the analysed matrix
   std::vector<Eigen::Triplet<double>> triplets;
   BiharmonicStats stats;
+  std::unique_ptr<AmortizedLdlt> amortized;
 
   bool same_pattern(const SpMat& a) const {
     if (!has_pattern || a.rows() + 1 != static_cast<Eigen::Index>(outer.size())) return false;
@@ -46,7 +51,7 @@ struct BiharmonicSolver::Impl {
 };
 
 BiharmonicSolver::BiharmonicSolver() : impl_(std::make_unique<Impl>()) {}
-BiharmonicSolver::~BiharmonicSolver() = default;
+
 const BiharmonicStats& BiharmonicSolver::stats() const { return impl_->stats; }
 void BiharmonicSolver::reset() {
   impl_->has_pattern = false;
@@ -130,5 +135,203 @@ void BiharmonicSolver::solve(const BiharmonicSystem& sys, std::vector<double>& x
     Eigen::Map<Eigen::VectorXd>(laplacian->data(), sys.n_rows) = inv_mass.cwiseProduct(b_mat * xv + g);
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Amortised solve. The factorisation is the up-looking LDL^T: row k of L solves a sparse
+// triangular system with the rows above, whose pattern is the set of elimination-tree paths from
+// the nonzeros of column k of the (permuted, upper) matrix; the symbolic pass counts each
+// column's entries the same way. Everything lives in flat arrays, so the loop over k can stop
+// after any row and resume at the next call.
+struct AmortizedLdlt {
+  enum Stage { kIdle, kAssemble, kOrder, kSymbolic, kNumeric, kSolve, kDone } stage = kIdle;
+  BiharmonicSystem system;
+  SpMat a, upper;  // the product matrix; its permuted upper triangle (column k: rows <= k)
+  Eigen::VectorXd rhs;
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;  // perm.indices()[old] = new
+  std::vector<int> parent, flag, lnz, lp, li, pattern;
+  std::vector<double> lx, d, y;
+  int next_row = 0;
+  std::vector<double> solution, laplacian;
+
+  void assemble() {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(system.value.size());
+    for (size_t i = 0; i < system.value.size(); ++i) t.emplace_back(system.row[i], system.col[i], system.value[i]);
+    SpMat b(system.n_rows, system.n_free);
+    b.setFromTriplets(t.begin(), t.end());
+    Eigen::Map<const Eigen::VectorXd> inv_mass(system.inv_mass.data(), system.n_rows);
+    Eigen::Map<const Eigen::VectorXd> g(system.known_rhs.data(), system.n_rows);
+    const SpMat bt = b.transpose();
+    a = bt * inv_mass.asDiagonal() * b;
+    a.makeCompressed();
+    rhs = -(bt * inv_mass.cwiseProduct(g));
+  }
+  void order() {
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> pinv;
+    Eigen::AMDOrdering<int> amd;
+    amd(a, pinv);
+    perm = pinv.inverse();
+    upper.resize(a.rows(), a.cols());
+    upper.selfadjointView<Eigen::Upper>() = a.selfadjointView<Eigen::Lower>().twistedBy(perm);
+    upper.makeCompressed();
+  }
+  void symbolic() {
+    const int n = int(upper.cols());
+    const int* cp = upper.outerIndexPtr();
+    const int* ci = upper.innerIndexPtr();
+    parent.assign(n, -1);
+    flag.assign(n, -1);
+    lnz.assign(n, 0);
+    for (int k = 0; k < n; ++k) {
+      flag[k] = k;
+      for (int p = cp[k]; p < cp[k + 1]; ++p)
+        for (int i = ci[p]; i < k && flag[i] != k; i = parent[i]) {
+          if (parent[i] == -1) parent[i] = k;
+          ++lnz[i];
+          flag[i] = k;
+        }
+    }
+    lp.assign(n + 1, 0);
+    for (int k = 0; k < n; ++k) lp[k + 1] = lp[k] + lnz[k];
+    li.resize(lp[n]);
+    lx.resize(lp[n]);
+    d.assign(n, 0.0);
+    y.assign(n, 0.0);
+    pattern.assign(n, 0);
+    std::fill(lnz.begin(), lnz.end(), 0);
+    std::fill(flag.begin(), flag.end(), -1);
+    next_row = 0;
+  }
+  // Rows of L and D from next_row on, until `allowance` multiply-adds are done (at least one
+  // row); returns the multiply-adds done.
+  double numeric(double allowance) {
+    const int n = int(upper.cols());
+    const int* cp = upper.outerIndexPtr();
+    const int* ci = upper.innerIndexPtr();
+    const double* cx = upper.valuePtr();
+    double work = 0;
+    int k = next_row;
+    for (; k < n && (k == next_row || work < allowance); ++k) {
+      work += cp[k + 1] - cp[k];
+      int top = n;
+      flag[k] = k;
+      for (int p = cp[k]; p < cp[k + 1]; ++p) {
+        int i = ci[p];
+        y[i] += cx[p];
+        int len = 0;
+        for (; flag[i] != k; i = parent[i]) {  // the path up the tree to an already visited node
+          pattern[len++] = i;
+          flag[i] = k;
+        }
+        while (len > 0) pattern[--top] = pattern[--len];
+      }
+      d[k] = y[k];
+      y[k] = 0.0;
+      for (; top < n; ++top) {
+        const int i = pattern[top];
+        const double yi = y[i];
+        y[i] = 0.0;
+        const int p_end = lp[i] + lnz[i];
+        work += lnz[i] + 1;
+        for (int p = lp[i]; p < p_end; ++p) y[li[p]] -= lx[p] * yi;
+        const double l_ki = yi / d[i];
+        d[k] -= l_ki * yi;
+        li[p_end] = k;
+        lx[p_end] = l_ki;
+        ++lnz[i];
+      }
+      if (d[k] == 0 || !std::isfinite(d[k]))  // (as Eigen's LDLT: only a zero pivot fails)
+        throw std::runtime_error("biharmonic field: factorisation failed (degenerate region of interest)");
+    }
+    next_row = k;
+    return work;
+  }
+  void solve() {
+    const int n = int(upper.cols());
+    Eigen::VectorXd x = perm * rhs;
+    for (int j = 0; j < n; ++j)
+      for (int p = lp[j]; p < lp[j + 1]; ++p) x[li[p]] -= lx[p] * x[j];
+    for (int j = 0; j < n; ++j) x[j] /= d[j];
+    for (int j = n - 1; j >= 0; --j)
+      for (int p = lp[j]; p < lp[j + 1]; ++p) x[j] -= lx[p] * x[li[p]];
+    const Eigen::VectorXd xo = perm.inverse() * x;
+    solution.assign(xo.data(), xo.data() + n);
+    // Per row: M^-1 (B x + g).
+    laplacian.assign(system.known_rhs.begin(), system.known_rhs.end());
+    for (size_t e = 0; e < system.value.size(); ++e) laplacian[system.row[e]] += system.value[e] * xo[system.col[e]];
+    for (int r = 0; r < system.n_rows; ++r) laplacian[r] *= system.inv_mass[r];
+  }
+};
+
+BiharmonicSolver::~BiharmonicSolver() = default;
+
+void BiharmonicSolver::begin_amortized(const BiharmonicSystem& system) {
+  if (!impl_->amortized) impl_->amortized = std::make_unique<AmortizedLdlt>();
+  AmortizedLdlt& j = *impl_->amortized;
+  j.system = system;
+  j.stage = AmortizedLdlt::kAssemble;
+}
+
+// Work is counted in multiply-adds (estimated for the steps that run in one piece), not in time,
+// so that a grab gives the same result on every machine and in WebAssembly (replays are exact).
+bool BiharmonicSolver::advance_amortized(double work_budget) {
+  if (!impl_->amortized) return false;
+  AmortizedLdlt& j = *impl_->amortized;
+  double used = 0;
+  bool worked = false;
+  try {
+    while (j.stage != AmortizedLdlt::kDone && j.stage != AmortizedLdlt::kIdle && (!worked || used < work_budget)) {
+      worked = true;
+      switch (j.stage) {
+        case AmortizedLdlt::kAssemble:
+          if (j.system.n_free == 0) {
+            j.solution.clear();
+            j.laplacian.assign(j.system.n_rows, 0.0);
+            j.stage = AmortizedLdlt::kDone;
+            break;
+          }
+          j.assemble();
+          used += 8.0 * double(j.system.value.size());
+          j.stage = AmortizedLdlt::kOrder;
+          break;
+        case AmortizedLdlt::kOrder:
+          j.order();
+          used += 20.0 * double(j.a.nonZeros());
+          j.stage = AmortizedLdlt::kSymbolic;
+          break;
+        case AmortizedLdlt::kSymbolic:
+          j.symbolic();
+          used += double(j.lp.back()) + double(j.upper.nonZeros());
+          j.stage = AmortizedLdlt::kNumeric;
+          break;
+        case AmortizedLdlt::kNumeric:
+          used += j.numeric(std::max(0.0, work_budget - used));
+          if (j.next_row == int(j.upper.cols())) j.stage = AmortizedLdlt::kSolve;
+          break;
+        case AmortizedLdlt::kSolve:
+          j.solve();
+          used += 2.0 * double(j.lp.back()) + double(j.system.value.size());
+          j.stage = AmortizedLdlt::kDone;
+          break;
+        default:
+          break;
+      }
+    }
+  } catch (...) {
+    j.stage = AmortizedLdlt::kIdle;
+    throw;
+  }
+  return j.stage == AmortizedLdlt::kDone;
+}
+
+bool BiharmonicSolver::amortized_running() const {
+  return impl_->amortized && impl_->amortized->stage != AmortizedLdlt::kIdle &&
+         impl_->amortized->stage != AmortizedLdlt::kDone;
+}
+void BiharmonicSolver::cancel_amortized() {
+  if (impl_->amortized) impl_->amortized->stage = AmortizedLdlt::kIdle;
+}
+const std::vector<double>& BiharmonicSolver::amortized_solution() const { return impl_->amortized->solution; }
+const std::vector<double>& BiharmonicSolver::amortized_laplacian() const { return impl_->amortized->laplacian; }
 
 }  // namespace adasculpt::deform

@@ -18,6 +18,15 @@
 //    by conjugate gradients preconditioned with the old factors, warm-started from their solve.
 //    If the relative residual is still above the tolerance after max_refinement_steps, the
 //    matrix is factorised afresh, so the result is always a converged solve (stats() says which).
+//
+// The amortised solve (the carried field's refresh in a grab, see handle_deformer.h) is exact too
+// but spread over calls: begin_amortized() takes a copy of the system, and each
+// advance_amortized(budget) works on it for about `budget` multiply-adds (counted, not timed, so
+// that results do not depend on the machine's speed: a replay is the same natively and in
+// WebAssembly; 1e6 is roughly 1 ms natively): the product matrix, a
+// fill-reducing ordering (Eigen's AMD), the symbolic analysis, then rows of an up-looking LDL^T
+// factorisation (our own, so that it can stop after any row and go on at the next call), then the
+// triangular solves. No frame of a grab pays for a whole factorisation.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -64,6 +73,18 @@ class BiharmonicSolver {
   void solve(const BiharmonicSystem& system, std::vector<double>& x, FieldReuse reuse = FieldReuse::Exact,
              int max_refinement_steps = 8, double refinement_tolerance = 1e-6,
              std::vector<double>* laplacian = nullptr);
+  // Amortised solve of a copy of `system` (see above); a running one is abandoned.
+  void begin_amortized(const BiharmonicSystem& system);
+  // Works for about work_budget multiply-adds (at least one step; the steps that run in one piece
+  // count an estimate); true once the solution is ready. Throws std::runtime_error on a
+  // degenerate region, as solve() does.
+  bool advance_amortized(double work_budget);
+  bool amortized_running() const;
+  void cancel_amortized();
+  // Once advance_amortized() returned true: the free values and, per row, the Laplacian of the
+  // solution (as solve()'s `laplacian`).
+  const std::vector<double>& amortized_solution() const;
+  const std::vector<double>& amortized_laplacian() const;
   // Forgets the cached pattern and factors (e.g. at the start of a grab).
   void reset();
   const BiharmonicStats& stats() const;

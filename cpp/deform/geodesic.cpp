@@ -55,7 +55,7 @@ double triangle_update(const Point& a, const Point& b, const Point& c, double da
 }
 
 void geodesic_distance(const SurfaceMesh& mesh, const std::vector<std::pair<Vertex, double>>& seeds,
-                       double max_distance, GeodesicWorkspace& ws, bool edges_only) {
+                       double max_distance, GeodesicWorkspace& ws, bool edges_only, size_t max_vertices) {
   ws.start(mesh.vertices_size());
   auto& dist = ws.dist_;
   auto& stamp = ws.stamp_;
@@ -82,7 +82,7 @@ void geodesic_distance(const SurfaceMesh& mesh, const std::vector<std::pair<Vert
     auto [d, v] = heap.back();
     heap.pop_back();
     if (fin[v.idx] || d > dist[v.idx]) continue;  // stale entry
-    if (d > max_distance) break;
+    if (d > max_distance || ws.order_.size() >= max_vertices) break;
     fin[v.idx] = 1;
     ws.order_.push_back(v);
     const Point& pv = mesh.position(v);

@@ -11,6 +11,7 @@
 // The march stops at max_distance, so the work is proportional to the region reached, not to
 // the mesh. Distances live in a GeodesicWorkspace that is reused between frames: its arrays grow
 // with the mesh but are never cleared in full (a per-run stamp marks the valid entries).
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -32,7 +33,7 @@ class GeodesicWorkspace {
 
  private:
   friend void geodesic_distance(const SurfaceMesh&, const std::vector<std::pair<Vertex, double>>&, double,
-                                GeodesicWorkspace&, bool);
+                                GeodesicWorkspace&, bool, size_t);
   void start(size_t n_vertex_slots);
   std::vector<double> dist_;
   std::vector<std::uint32_t> stamp_;  // == run_: dist_ valid; state_ tells tentative or final
@@ -44,8 +45,11 @@ class GeodesicWorkspace {
 
 // Distances from the seeds (vertex, initial distance) to every vertex within max_distance.
 // edges_only = true gives plain Dijkstra on the edge graph (kept for comparison and tests).
+// The march also stops once max_vertices vertices are final (a vertex budget: order() then holds
+// the max_vertices nearest ones, and the last of them tells the radius reached).
 void geodesic_distance(const SurfaceMesh& mesh, const std::vector<std::pair<Vertex, double>>& seeds,
-                       double max_distance, GeodesicWorkspace& ws, bool edges_only = false);
+                       double max_distance, GeodesicWorkspace& ws, bool edges_only = false,
+                       size_t max_vertices = SIZE_MAX);
 
 // Distance at C from the unfolded triangle (A, B, C) with known distances dA, dB; the smaller
 // edge update when the straight path from the virtual source misses segment AB.

@@ -1,6 +1,7 @@
 #include "deform/handle_deformer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -28,9 +29,11 @@ void HandleDeformer::grow(size_t n) {
   row_index_.resize(cap, -1);
   field_.resize(cap, 0.0);
   laplacian_.resize(cap, 0.0);
+  refresh_stamp_.resize(cap, 0);
 }
 
-void HandleDeformer::begin(const SurfaceMesh& mesh, const Point& picked, double handle_radius, double roi_radius) {
+void HandleDeformer::begin(const SurfaceMesh& mesh, const Point& picked, mesh::Face picked_face,
+                           double handle_radius, double roi_radius) {
   if (!(handle_radius >= 0) || !(roi_radius >= 0) || !std::isfinite(handle_radius) || !std::isfinite(roi_radius))
     throw std::invalid_argument("grab: handle and ROI radii must be finite and non-negative");
   center_ = picked;
@@ -38,21 +41,31 @@ void HandleDeformer::begin(const SurfaceMesh& mesh, const Point& picked, double 
   roi_radius_ = std::max(roi_radius, handle_radius);
   previous_total_ = HandleTransform{};
   first_frame_ = true;
-  frames_since_solve_ = 0;
+  handle_radius_used_ = handle_radius_;
+  roi_radius_used_ = roi_radius_;
   result_ = StepResult{};
   solver_.reset();
-  // Once per grab: the vertex nearest to the picked point (a linear scan; a per-frame search
-  // only looks at the last region).
+  solver_.cancel_amortized();
+  // Once per grab: the vertex nearest to the picked point (a per-frame search only looks at the
+  // last region); among the picked face's corners, or else by a linear scan.
   double best = std::numeric_limits<double>::infinity();
   begin_seed_ = Vertex();
-  for (Vertex v : mesh.vertices()) {
-    if (mesh.is_isolated(v)) continue;
+  Vertex corners[3];
+  const bool on_face = picked_face.is_valid() && picked_face.idx < mesh.faces_size() && !mesh.is_deleted(picked_face);
+  if (on_face) mesh.face_vertices(picked_face, corners);
+  auto consider = [&](Vertex v) {
+    if (mesh.is_isolated(v)) return;
     const Vec3 d = mesh.position(v) - picked;
     const double d2 = glm::dot(d, d);
     if (d2 < best) {
       best = d2;
       begin_seed_ = v;
     }
+  };
+  if (on_face) {
+    for (Vertex v : corners) consider(v);
+  } else {
+    for (Vertex v : mesh.vertices()) consider(v);
   }
   if (!begin_seed_.is_valid()) throw std::invalid_argument("grab: the mesh has no faces");
   active_ = true;
@@ -92,13 +105,25 @@ void HandleDeformer::compute_region(const SurfaceMesh& mesh) {
   seeds_.clear();
   seeds_.emplace_back(seed, glm::length(mesh.position(seed) - center_));
   for (Vertex u : mesh.vertices(seed)) seeds_.emplace_back(u, glm::length(mesh.position(u) - center_));
-  geodesic_distance(mesh, seeds_, roi_radius_, geodesic_, options_.edges_only_distance);
+  const size_t budget = options_.max_roi_vertices ? options_.max_roi_vertices : SIZE_MAX;
+  geodesic_distance(mesh, seeds_, roi_radius_, geodesic_, options_.edges_only_distance, budget);
+  // At the budget the march stopped short of the ROI radius: the ROI is the disc it reached,
+  // and the handle keeps its share of it.
+  handle_radius_used_ = handle_radius_;
+  roi_radius_used_ = roi_radius_;
+  result_.roi_capped = geodesic_.order().size() >= budget;
+  if (result_.roi_capped) {
+    roi_radius_used_ = geodesic_.distance(geodesic_.order().back());
+    handle_radius_used_ = roi_radius_ > 0 ? handle_radius_ * roi_radius_used_ / roi_radius_ : 0.0;
+  }
+  result_.roi_radius = roi_radius_used_;
+  result_.handle_radius = handle_radius_used_;
 
   handle_.clear();
   free_.clear();
   fixed_.clear();
   for (Vertex v : geodesic_.order()) {
-    const bool in_handle = geodesic_.distance(v) <= handle_radius_ || handle_.empty();
+    const bool in_handle = geodesic_.distance(v) <= handle_radius_used_ || handle_.empty();
     set_category(v, in_handle ? kHandle : kFree);
     index_[v.idx] = -1;
     row_index_[v.idx] = -1;
@@ -131,23 +156,26 @@ void HandleDeformer::compute_region(const SurfaceMesh& mesh) {
   result_.region.insert(result_.region.end(), fixed_.begin(), fixed_.begin() + ring1);
 }
 
-void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
+// The bi-Laplacian system of the current region on the current surface. Rows: the free
+// vertices and their neighbours (each one's cotan row touches a free column).
+void HandleDeformer::assemble_system(const SurfaceMesh& mesh) {
+  for (Vertex v : row_vertices_) row_index_[v.idx] = -1;  // the last assembly's rows
+  row_vertices_.clear();
   const int n_free = static_cast<int>(free_.size());
-  if (n_free == 0) {
-    result_.field_stats = BiharmonicStats{};
-    return;
-  }
   for (int i = 0; i < n_free; ++i) index_[free_[i].idx] = i;
-  // Rows: the free vertices and their neighbours (each one's cotan row touches a free column).
-  int n_rows = 0;
+  auto add_row_vertex = [&](Vertex v) {
+    if (row_index_[v.idx] >= 0) return;
+    row_index_[v.idx] = static_cast<int>(row_vertices_.size());
+    row_vertices_.push_back(v);
+  };
   for (Vertex v : free_) {
-    if (row_index_[v.idx] < 0) row_index_[v.idx] = n_rows++;
-    for (Vertex u : mesh.vertices(v))
-      if (row_index_[u.idx] < 0) row_index_[u.idx] = n_rows++;
+    add_row_vertex(v);
+    for (Vertex u : mesh.vertices(v)) add_row_vertex(u);
   }
+  const int n_rows = static_cast<int>(row_vertices_.size());
   system_.clear(n_free, n_rows);
-  auto add_row = [&](Vertex j) {
-    const int r = row_index_[j.idx];
+  for (int r = 0; r < n_rows; ++r) {
+    const Vertex j = row_vertices_[r];
     const Point& pj = mesh.position(j);
     double diag = 0, area = 0, g = 0;
     for (mesh::Halfedge h : mesh.halfedges(j)) {
@@ -178,18 +206,12 @@ void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
       g += diag;
     system_.inv_mass[r] = 1.0 / std::max(area, 1e-300);
     system_.known_rhs[r] = g;
-  };
-  for (Vertex v : free_) {
-    if (row_index_[v.idx] >= 0 && row_index_[v.idx] < n_rows) add_row(v);
   }
-  for (Vertex v : handle_)
-    if (row_index_[v.idx] >= 0) add_row(v);
-  for (Vertex v : fixed_)
-    if (row_index_[v.idx] >= 0) add_row(v);
-  solver_.solve(system_, solution_, options_.reuse, options_.max_refinement_steps, options_.refinement_tolerance,
-                &row_laplacian_);
-  result_.field_stats = solver_.stats();
-  for (int i = 0; i < n_free; ++i) field_[free_[i].idx] = std::clamp(solution_[i], 0.0, 1.0);
+}
+
+// The solution into field_ (clamped to [0,1]) and its Laplacian into laplacian_.
+void HandleDeformer::store_field() {
+  for (size_t i = 0; i < free_.size(); ++i) field_[free_[i].idx] = std::clamp(solution_[i], 0.0, 1.0);
   auto store = [&](const std::vector<Vertex>& vs) {
     for (Vertex v : vs) laplacian_[v.idx] = row_index_[v.idx] >= 0 ? row_laplacian_[row_index_[v.idx]] : 0.0;
   };
@@ -198,13 +220,143 @@ void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
   store(fixed_);
 }
 
+void HandleDeformer::compute_field(const SurfaceMesh& mesh) {
+  if (free_.empty()) {
+    result_.field_stats = BiharmonicStats{};
+    return;
+  }
+  assemble_system(mesh);
+  solver_.solve(system_, solution_, options_.reuse, options_.max_refinement_steps, options_.refinement_tolerance,
+                &row_laplacian_);
+  result_.field_stats = solver_.stats();
+  store_field();
+}
+
+// Starts the amortised exact solve of the current region on the current surface.
+void HandleDeformer::start_refresh(const SurfaceMesh& mesh) {
+  assemble_system(mesh);
+  solver_.begin_amortized(system_);
+  if (++refresh_id_ == 0) {
+    std::fill(refresh_stamp_.begin(), refresh_stamp_.end(), 0);
+    refresh_id_ = 1;
+  }
+  refresh_free_ = free_;
+  refresh_rows_ = row_vertices_;
+  for (Vertex v : refresh_rows_) refresh_stamp_[v.idx] = refresh_id_;
+  for (Vertex v : free_) refresh_stamp_[v.idx] = refresh_id_;
+}
+
+// The finished solve's values replace the carried ones: on its free vertices that are still
+// free, and its Laplacian on its rows. Vertices added since it started take the mean of their
+// neighbours (two sweeps, as in carry_region).
+void HandleDeformer::apply_refresh(const SurfaceMesh& mesh) {
+  const std::vector<double>& x = solver_.amortized_solution();
+  const std::vector<double>& lap = solver_.amortized_laplacian();
+  auto alive = [&](Vertex v) { return v.idx < mesh.vertices_size() && !mesh.is_deleted(v); };
+  for (size_t i = 0; i < refresh_free_.size() && i < x.size(); ++i) {
+    const Vertex v = refresh_free_[i];
+    if (alive(v) && category(v) == kFree) field_[v.idx] = std::clamp(x[i], 0.0, 1.0);
+  }
+  for (size_t r = 0; r < refresh_rows_.size() && r < lap.size(); ++r)
+    if (alive(refresh_rows_[r])) laplacian_[refresh_rows_[r].idx] = lap[r];
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    for (Vertex v : free_) {
+      if (refresh_stamp_[v.idx] == refresh_id_) continue;
+      double sum = 0;
+      int known = 0;
+      for (Vertex w : mesh.vertices(v)) {
+        const Category c = category(w);
+        if (c == kOutside || (c == kFree && refresh_stamp_[w.idx] != refresh_id_ && sweep == 0)) continue;
+        sum += field(w);
+        ++known;
+      }
+      if (known) field_[v.idx] = std::clamp(sum / known, 0.0, 1.0);
+    }
+  }
+}
+
+namespace {
+// w(r) = c0 + c1 r^2 + c2 ln r + c3 r^2 ln r, the rotationally symmetric biharmonic function of
+// the plane, with w = 1, w' = 0 at r = a (the handle's rim) and w = 0, w' = 0 at r = 1 (the ROI's
+// rim, radii relative to it). Its coefficients by Gaussian elimination of the 4x4 system.
+std::array<double, 4> radial_biharmonic(double a) {
+  auto row_w = [](double r) { return std::array<double, 5>{1, r * r, std::log(r), r * r * std::log(r), 0}; };
+  auto row_dw = [](double r) { return std::array<double, 5>{0, 2 * r, 1 / r, 2 * r * std::log(r) + r, 0}; };
+  std::array<std::array<double, 5>, 4> m = {row_w(a), row_dw(a), row_w(1.0), row_dw(1.0)};
+  m[0][4] = 1.0;
+  for (int c = 0; c < 4; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+    std::swap(m[c], m[pivot]);
+    for (int r = 0; r < 4; ++r) {
+      if (r == c || m[c][c] == 0) continue;
+      const double f = m[r][c] / m[c][c];
+      for (int k = c; k < 5; ++k) m[r][k] -= f * m[c][k];
+    }
+  }
+  std::array<double, 4> coef{};
+  for (int c = 0; c < 4; ++c) coef[c] = m[c][c] != 0 ? m[c][4] / m[c][c] : 0.0;
+  return coef;
+}
+}  // namespace
+
+// The carried field's starting point at the first frame: the radial profile of the geodesic
+// distance between the handle's rim and the ROI's.
+// The ROI again on the current surface, as the paper measures it every frame (a pulled surface
+// stretches, so the geodesic disc holds fewer vertices). The carried field moves to the new
+// region: values of vertices still free are rescaled so that they fall to 0 where the region
+// now ends (no step in the blending between the new border and the old values), new free
+// vertices take the radial profile; the next exact solve then replaces them.
+void HandleDeformer::refresh_region(const SurfaceMesh& mesh) {
+  if (++refresh_id_ == 0) {
+    std::fill(refresh_stamp_.begin(), refresh_stamp_.end(), 0);
+    refresh_id_ = 1;
+  }
+  for (Vertex v : free_) refresh_stamp_[v.idx] = refresh_id_;  // free before: field_ holds a value
+  compute_region(mesh);
+  double border = 0;  // the largest value of a vertex that left the ROI
+  for (Vertex v : fixed_)
+    if (refresh_stamp_[v.idx] == refresh_id_) border = std::max(border, field_[v.idx]);
+  carried_.resize(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) carried_[i] = field_[free_[i].idx];
+  start_from_radial_profile();  // every free vertex; those that were free before get theirs back
+  const double scale = border < 1 ? 1.0 / (1.0 - border) : 0.0;
+  for (size_t i = 0; i < free_.size(); ++i)
+    if (refresh_stamp_[free_[i].idx] == refresh_id_)
+      field_[free_[i].idx] = std::clamp((carried_[i] - border) * scale, 0.0, 1.0);
+}
+
+void HandleDeformer::start_from_radial_profile() {
+  const double outer = std::max(roi_radius_used_, 1e-300);
+  double rim = handle_radius_used_;
+  for (Vertex v : handle_) rim = std::max(rim, geodesic_.distance(v));
+  const double a = std::clamp(rim / outer, 0.02, 0.95);
+  const std::array<double, 4> c = radial_biharmonic(a);
+  for (Vertex v : free_) {
+    const double r = std::clamp(geodesic_.distance(v) / outer, a, 1.0);
+    const double lr = std::log(r);
+    field_[v.idx] = std::clamp(c[0] + c[1] * r * r + c[2] * lr + c[3] * r * r * lr, 0.0, 1.0);
+  }
+}
+
+double HandleDeformer::field_error_vs_full_solve(const SurfaceMesh& mesh) {
+  if (free_.empty()) return 0.0;
+  assemble_system(mesh);
+  BiharmonicSolver exact;
+  std::vector<double> x;
+  exact.solve(system_, x);
+  double err = 0;
+  for (int i = 0; i < system_.n_free; ++i)
+    err = std::max(err, std::abs(std::clamp(x[i], 0.0, 1.0) - field_[free_[i].idx]));
+  return err;
+}
+
 void HandleDeformer::recompute_field(const SurfaceMesh& mesh) {
   if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
-  for (Vertex v : handle_) row_index_[v.idx] = -1;
-  for (Vertex v : free_) row_index_[v.idx] = -1;
-  for (Vertex v : fixed_) row_index_[v.idx] = -1;
   compute_field(mesh);
 }
+
 
 void HandleDeformer::compute_region_and_field(const SurfaceMesh& mesh) {
   if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
@@ -303,19 +455,36 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
 StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon) {
   if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
   auto t = Clock::now();
-  const bool refresh = first_frame_ || ++frames_since_solve_ >= std::max(1, options_.field_refresh_frames);
-  if (refresh) {
+  if (options_.field_solve == FieldSolve::EveryFrame) {
     compute_region(mesh);
     result_.roi_ms = ms_since(t);
     t = Clock::now();
     compute_field(mesh);
     result_.field_ms = ms_since(t);
-    frames_since_solve_ = 0;
   } else {
-    carry_region(mesh);
+    if (first_frame_) {
+      compute_region(mesh);
+      start_from_radial_profile();
+    } else {
+      carry_region(mesh);
+    }
     result_.roi_ms = ms_since(t);
-    result_.field_ms = 0;
+    t = Clock::now();
+    // The refresh: a first one starts with the grab, each finished one is applied and the next
+    // one starts on the current surface.
+    if (first_frame_ || !solver_.amortized_running()) start_refresh(mesh);
+    result_.field_refreshed = solver_.advance_amortized(options_.field_work_per_frame);
+    if (result_.field_refreshed) {
+      apply_refresh(mesh);
+      ++result_.field_refreshes;
+      refresh_region(mesh);
+      start_refresh(mesh);
+    }
+    result_.field_ms = ms_since(t);
   }
+  result_.n_handle = handle_.size();
+  result_.n_free = free_.size();
+  result_.n_fixed = fixed_.size();
 
   const HandleTransform inc = increment(previous_total_, total);
   t = Clock::now();

@@ -4,10 +4,28 @@
 //
 // begin() fixes the handle centre (a surface point) and the two geodesic radii. Each step():
 //  1. ROI: geodesic distance (geodesic.h) from the centre on the current mesh, cut at the ROI
-//     radius: handle = within handle_radius, free = the rest of the ROI, fixed = two rings of
-//     vertices outside the ROI (two, because the bi-Laplacian stencil reaches two rings).
-//  2. Field: the biharmonic blending field w (1 on the handle, 0 on the fixed rings), recomputed
-//     on the current surface every step so that large edits work (biharmonic_solver.h).
+//     radius and at a vertex budget (max_roi_vertices: a larger ROI is shrunk to the budget's
+//     radius, the handle with it, and the step reports roi_capped): handle = within
+//     handle_radius, free = the rest of the ROI, fixed = two rings of vertices outside the ROI
+//     (two, because the bi-Laplacian stencil reaches two rings).
+//  2. Field: the biharmonic blending field w (1 on the handle, 0 on the fixed rings) on the
+//     current surface (biharmonic_solver.h). Two ways (DeformOptions::field_solve):
+//     - EveryFrame, as in the paper: ROI and field recomputed from scratch every frame (a sparse
+//       factorisation, 50-100 ms on a 10k-vertex ROI: the frame-time tail of issue 18).
+//     - Carried (default): ROI and field are carried through the edits between refreshes
+//       (below; the ROI is measured again on the current surface at each): vertices the remesher
+//       removes leave, vertices it adds take the mean of their known neighbours (a split's new
+//       vertex sits between its edge's ends), a collapse's survivor keeps its value, the
+//       refinement's midpoints keep the refinement's estimate. The field starts from the
+//       rotationally symmetric biharmonic profile of the geodesic distance (the exact solution
+//       on a flat disc) and is replaced, again and again, by exact solves of the current region
+//       on the current surface, each spread over several frames (BiharmonicSolver's amortised
+//       solve, field_work_per_frame each frame): no frame pays for a whole factorisation, and the
+//       field is at most one solve's duration behind the surface (about 10 frames for a
+//       10k-vertex ROI at the default budget). Warm-started CG on the
+//       bi-Laplacian was tried first and dropped: with a Jacobi preconditioner 30 steps a frame
+//       left a field error of 0.08 after 60 frames (it only removes local error; the
+//       bi-Laplacian's condition number grows as h^-4).
 //  3. Refinement: every edge with a free end is tentatively split at its midpoint; the split is
 //     kept when the deformed midpoint deviates by more than epsilon from the midpoint of the
 //     deformed endpoints. The field at the midpoint is the mean of the endpoints corrected by the
@@ -29,23 +47,38 @@
 
 namespace adasculpt::deform {
 
+enum class FieldSolve {
+  Carried,     // carried through the edits, corrected by a few CG steps per frame (default)
+  EveryFrame,  // ROI and field from scratch every frame (the paper; for comparison)
+};
+
 struct DeformOptions {
+  FieldSolve field_solve = FieldSolve::Carried;
+  // Carried: the work each frame gives the amortised exact solve, in multiply-adds (counted, not
+  // timed, so that a grab is reproducible; 3e6 is about 2-3 ms natively). At least one step of
+  // it runs per frame, the longest being the ordering of a 10k-vertex ROI (~3 ms).
+  double field_work_per_frame = 3e6;
+  // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
+  size_t max_roi_vertices = 20000;
+  // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).
   FieldReuse reuse = FieldReuse::Exact;
-  int max_refinement_steps = 20;  // CarryFactorization only: PCG steps before refactorising
-  double refinement_tolerance = 1e-4;  // relative residual of the carried solve (field error ~2e-3 on the dragon)
-  bool refine = true;            // the midpoint test of step 3
-  // ROI and field are recomputed from scratch every this many frames; in the frames between,
-  // they are carried on the edited mesh (removed vertices leave, vertices the remesher added take
-  // the mean of their neighbours). 1 = every frame, as in the paper. The field changes little
-  // from one frame to the next, and its solve is most of a frame's cost (see README figures).
-  int field_refresh_frames = 4;
-  bool edges_only_distance = false;  // plain Dijkstra instead of the triangle update (comparison)
+  int max_refinement_steps = 20;       // CarryFactorization only: PCG steps before refactorising
+  double refinement_tolerance = 1e-4;  // relative residual of the carried factorisation
+  bool refine = true;                  // the midpoint test of step 3
+  bool edges_only_distance = false;    // plain Dijkstra instead of the triangle update (comparison)
 };
 
 struct StepResult {
   double roi_ms = 0, field_ms = 0, refine_ms = 0, deform_ms = 0;
   size_t n_handle = 0, n_free = 0, n_fixed = 0, splits = 0;
   BiharmonicStats field_stats;
+  // The ROI was cut to max_roi_vertices: roi_radius is the radius it reached (else the radius
+  // asked for), handle_radius shrunk in proportion.
+  bool roi_capped = false;
+  double roi_radius = 0, handle_radius = 0;
+  // Carried: this frame applied a finished exact solve; how many so far in this grab.
+  bool field_refreshed = false;
+  int field_refreshes = 0;
   // The ROI plus one ring (the first fixed ring), for Remesher::iterate_region. The caller may
   // edit it in place (the remesher does); the next step() looks in it for the vertex nearest to
   // the handle centre, so it must only hold vertices of this mesh.
@@ -58,15 +91,25 @@ class HandleDeformer {
 
   // picked: a point on the surface (e.g. the closest point to a click); radii are geodesic
   // lengths, roi_radius < handle_radius is treated as roi_radius = handle_radius.
-  void begin(const SurfaceMesh& mesh, const Point& picked, double handle_radius, double roi_radius);
+  // The ROI's seed is the vertex nearest to picked: a corner of picked_face (a face the point
+  // lies on, e.g. from the session's AABB tree), or without one, a scan of every vertex.
+  void begin(const SurfaceMesh& mesh, const Point& picked, mesh::Face picked_face, double handle_radius,
+             double roi_radius);
+  void begin(const SurfaceMesh& mesh, const Point& picked, double handle_radius, double roi_radius) {
+    begin(mesh, picked, mesh::Face(), handle_radius, roi_radius);
+  }
   // One frame; `total` is the transform since begin(). Edits the mesh (splits, positions).
   StepResult& step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon);
   // Steps 1-2 only (no refinement, no deformation): for tests and for measuring the field.
   void compute_region_and_field(const SurfaceMesh& mesh);
-  // Step 2 only, on the region of the last call (same vertices; geometry may have changed).
+  // Step 2 only, on the region of the last call (same vertices; geometry may have changed):
+  // a full solve.
   void recompute_field(const SurfaceMesh& mesh);
   void end();
   bool active() const { return active_; }
+  // The largest |w - w_full| over the free vertices of the last field computation, where w_full
+  // solves that same system exactly (a factorisation: for measurements and tests only).
+  double field_error_vs_full_solve(const SurfaceMesh& mesh);
 
   const Point& center() const { return center_; }
   const HandleTransform& total() const { return previous_total_; }
@@ -84,7 +127,13 @@ class HandleDeformer {
   enum Category : std::uint8_t { kOutside = 0, kHandle, kFree, kRing1, kRing2 };
   Vertex find_seed(const SurfaceMesh& mesh) const;
   void compute_region(const SurfaceMesh& mesh);
+  void assemble_system(const SurfaceMesh& mesh);
   void compute_field(const SurfaceMesh& mesh);
+  void start_refresh(const SurfaceMesh& mesh);
+  void refresh_region(const SurfaceMesh& mesh);
+  void apply_refresh(const SurfaceMesh& mesh);
+  void store_field();
+  void start_from_radial_profile();
   void carry_region(const SurfaceMesh& mesh);
   double midpoint_field(Vertex a, Vertex b, const Point& pa, const Point& pb) const;
   size_t refine(SurfaceMesh& mesh, const HandleTransform& inc, double epsilon);
@@ -104,13 +153,19 @@ class HandleDeformer {
   Vertex begin_seed_;
   HandleTransform previous_total_;
   bool first_frame_ = true;
-  int frames_since_solve_ = 0;
+  double handle_radius_used_ = 0, roi_radius_used_ = 0;  // after the vertex budget
 
   GeodesicWorkspace geodesic_;
   BiharmonicSolver solver_;
   BiharmonicSystem system_;
   std::vector<double> solution_;
   std::vector<Vertex> handle_, free_, fixed_;
+  std::vector<Vertex> row_vertices_;
+  // The amortised solve in progress: its free vertices and rows, stamped refresh_id_.
+  std::vector<Vertex> refresh_free_, refresh_rows_;
+  std::vector<std::uint32_t> refresh_stamp_;
+  std::uint32_t refresh_id_ = 0;
+  std::vector<double> carried_;  // refresh_region's scratch  // the system's rows of the last assembly (their row_index_ is set)
   // Per vertex slot, valid when stamp_ == frame_ (never cleared in full).
   std::vector<std::uint32_t> stamp_;
   std::vector<std::uint8_t> category_;

@@ -10,12 +10,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "deform/handle_deformer.h"
 #include "geometry/aabb_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
+#include "sculpt/grab.h"
 #include "sculpt/session_file.h"
 
 namespace adasculpt::sculpt {
@@ -147,7 +147,7 @@ struct Session::Impl {
   std::deque<Snapshot> undo, redo;  // meshes before / after the steps
   size_t undo_bytes = 0;
 
-  deform::HandleDeformer deformer;
+  Grab grab;
   std::unique_ptr<remesh::Remesher> remesher;  // alive during a grab or a stroke only
   bool grabbing = false;
   BrushStroker brush;
@@ -193,7 +193,7 @@ struct Session::Impl {
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
     if (!grabbing && !brushing) return;
-    if (grabbing) deformer.end();
+    if (grabbing) grab.end();
     grabbing = brushing = false;
     remesher.reset();
     // Deleted slots are compacted once they are an eighth of the faces' or vertices' slots, not
@@ -281,9 +281,9 @@ void Session::grab_begin(const Point& center, double handle_radius, double roi_r
   s.end_grab();
   const geometry::TriangleTree& tree = s.surface_tree();
   if (tree.empty()) throw std::invalid_argument("grab: the mesh has no non-degenerate face");
-  const Point picked = tree.closest_point(center).point;
+  const geometry::TriangleTree::ClosestHit hit = tree.closest_point(center);
   s.push_undo();
-  s.deformer.begin(s.mesh, picked, handle_radius, roi_radius);
+  s.grab.begin(s.mesh, hit.point, tree.face_of(hit.triangle), handle_radius, roi_radius);
   s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
   s.grabbing = true;
 }
@@ -291,22 +291,11 @@ void Session::grab_begin(const Point& center, double handle_radius, double roi_r
 void Session::grab_drag(const deform::HandleTransform& total) {
   Impl& s = *impl_;
   if (!s.grabbing) throw std::logic_error("grab_drag: no grab in progress (call grab_begin first)");
-  const auto t0 = Clock::now();
-  const size_t faces_before = s.mesh.faces_size();
-  deform::StepResult& r = s.deformer.step(s.mesh, total, s.options.epsilon);
-  const auto t1 = Clock::now();
-  const remesh::IterationStats st = s.remesher->iterate_region(r.region);
-  FrameTimings& f = s.last;
-  f.roi_ms = r.roi_ms;
-  f.field_ms = r.field_ms;
-  f.refine_ms = r.refine_ms;
-  f.deform_ms = r.deform_ms;
-  f.remesh_ms = ms_since(t1);
-  f.total_ms = ms_since(t0);
+  s.grab.drag(s.mesh, *s.remesher, total, s.options.epsilon, s.last, s.changes);
   s.tree_valid = false;
-  if (st.splits + st.collapses + st.flips > 0 || s.mesh.faces_size() != faces_before) s.changes.topology_changed = true;
-  s.changes.touched_vertices.insert(s.changes.touched_vertices.end(), r.region.begin(), r.region.end());
 }
+
+deform::DeformOptions& Session::grab_options() { return impl_->grab.options(); }
 
 void Session::grab_end() { impl_->end_grab(); }
 bool Session::grabbing() const { return impl_->grabbing; }
@@ -420,12 +409,14 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
   s.require_mesh("replay");
   set_settings(to_json(file.settings));
   std::vector<double> total, roi, field, refine, deform, rem;
+  bool roi_capped = false;
   // Brush frames have no field or refinement phase: they stay out of those medians.
   auto record = [&](bool grab_frame) {
     const FrameTimings& f = s.last;
     total.push_back(f.total_ms);
     roi.push_back(f.roi_ms);
     if (grab_frame) {
+      roi_capped = roi_capped || f.roi_capped;
       field.push_back(f.field_ms);
       refine.push_back(f.refine_ms);
     }
@@ -475,6 +466,7 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
           {"refine_ms_median", percentile(refine, 0.5)},
           {"deform_ms_median", percentile(deform, 0.5)},
           {"remesh_ms_median", percentile(rem, 0.5)},
+          {"roi_capped", roi_capped},
           {"vertices", q.vertices},
           {"faces", q.faces},
           {"min_angle_deg", q.min_angle_deg},

@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "deform/handle_deformer.h"
 #include "deform/handle_transform.h"
 #include "geometry/quality.h"
 #include "io/mesh_io.h"
@@ -31,9 +32,13 @@ namespace adasculpt::sculpt {
 
 // Milliseconds spent in each phase of the last grab_drag() frame (or of the last remesh() or
 // brush_stamp(): roi = finding the surface under the brush, summed over its `stamps`).
+// A grab frame also says whether its ROI was cut to the vertex budget (roi_capped; the user
+// should be told) and how many vertices the ROI holds (handle + free).
 struct FrameTimings {
   double roi_ms = 0, field_ms = 0, refine_ms = 0, deform_ms = 0, remesh_ms = 0, total_ms = 0;
   int stamps = 0;
+  bool roi_capped = false;
+  int roi_vertices = 0;
 };
 
 // What changed since the last clear_changes(). topology_changed: faces or vertices were added or
@@ -85,6 +90,9 @@ class Session {
   // Ends the grab (one undo step); compacts the mesh when deleted slots add up (see above).
   void grab_end();
   bool grabbing() const;
+  // How a grab solves its field (carried, or every frame as in the paper) and the ROI's vertex
+  // budget (deform/handle_deformer.h); changes apply from the next grab_begin.
+  deform::DeformOptions& grab_options();
 
   // Brush strokes (sculpt/brush.h). brush_begin ends a running grab or stroke and starts one undo
   // step; throws std::invalid_argument on bad settings or without a mesh. Each brush_stamp is one

@@ -1,0 +1,267 @@
+// Frame-time tail of a pull (issue 18): a grab with a ROI of about 10k vertices on the 100k-triangle
+// dragon, remeshed first as a sculpting session would be. Prints the median, p95 and max frame of
+// each run (wall clock and the thread's CPU time: the CPU time is what the core costs when the
+// machine is shared) and the median of those over the runs, plus the per-phase medians.
+// Also: the same pull on 4 and 16 disjoint copies of the dragon (cost must not grow with the
+// mesh), and the paper's every-frame field solve for comparison.
+//   build/native/adasculpt_bench --benchmark_filter=Pull
+// Writes the scene as a session file (build/bench/pull-scene.json: a remesh step, then the grab)
+// for the WebAssembly run of the same scene (tests/bench/pull-frame-wasm.mjs).
+#include <benchmark/benchmark.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "deform/geodesic.h"
+#include "deform/handle_deformer.h"
+#include "io/load_mesh.h"
+#include "mesh/build_from_triangles.h"
+#include "remesh/remesher.h"
+#include "sculpt/session.h"
+#include "sculpt/session_file.h"
+
+namespace {
+
+using namespace adasculpt;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kRemeshIterations = 5;
+constexpr int kFrames = 60;  // one grab
+constexpr int kRuns = 3;     // median of the runs' figures
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double idx = p * double(v.size() - 1);
+  const size_t lo = size_t(idx), hi = std::min(v.size() - 1, lo + 1);
+  return v[lo] + (idx - double(lo)) * (v[hi] - v[lo]);
+}
+double median(const std::vector<double>& v) { return percentile(v, 0.5); }
+
+struct PullScene {
+  mesh::SurfaceMesh mesh;  // the dragon after kRemeshIterations whole-mesh iterations
+  nlohmann::json settings;  // its absolute remeshing settings (the copies use the same)
+  sculpt::GrabStep grab;
+  size_t roi_vertices = 0;
+  bool ok = false;
+};
+
+// The vertex with the largest y (the dragon's back), the geodesic radius holding 10k vertices
+// around it, the handle 15 % of that, a pull of half the radius upwards over kFrames frames.
+const PullScene& scene() {
+  static const PullScene s = [] {
+    PullScene r;
+    const std::string path = std::string(ADASCULPT_SHARED_MESHES_DIR) + "/dragon.off";
+    if (!std::filesystem::exists(path)) return r;
+    sculpt::Session session;
+    session.load_file(path);
+    session.remesh(kRemeshIterations);
+    r.mesh = session.mesh();
+    r.settings = session.settings();
+    r.settings.erase("diagonal");
+    mesh::Vertex pick(0);
+    for (mesh::Vertex v : r.mesh.vertices())
+      if (r.mesh.position(v).y > r.mesh.position(pick).y) pick = v;
+    deform::GeodesicWorkspace ws;
+    deform::geodesic_distance(r.mesh, {{pick, 0.0}}, 1e300, ws);
+    r.roi_vertices = std::min<size_t>(10000, ws.order().size() - 1);
+    r.grab.center = r.mesh.position(pick);
+    r.grab.roi_radius = ws.distance(ws.order()[r.roi_vertices]);
+    r.grab.handle_radius = 0.15 * r.grab.roi_radius;
+    r.grab.translate = Vec3(0, 0.5 * r.grab.roi_radius, 0);
+    r.grab.substeps = kFrames;
+    r.ok = true;
+    // The same scene for the WebAssembly run: the raw dragon, remeshed by the session file.
+    sculpt::SessionFile file;
+    sculpt::SessionStep remesh_step;
+    remesh_step.kind = sculpt::SessionStep::Kind::Remesh;
+    remesh_step.count = kRemeshIterations;
+    sculpt::SessionStep grab_step;
+    grab_step.kind = sculpt::SessionStep::Kind::Grab;
+    grab_step.grab = r.grab;
+    file.steps = {remesh_step, grab_step};
+    std::filesystem::create_directories("build/bench");
+    std::ofstream("build/bench/pull-scene.json") << sculpt::to_json(file).dump(1) << "\n";
+    return r;
+  }();
+  return s;
+}
+
+// k disjoint copies of the mesh side by side along x (copy 0 is the original).
+mesh::SurfaceMesh copies(const mesh::SurfaceMesh& m, int k) {
+  const io::PolygonSoup soup = io::soup_from_mesh(m);
+  double lo = 1e300, hi = -1e300;
+  for (const auto& p : soup.points) lo = std::min(lo, p[0]), hi = std::max(hi, p[0]);
+  const double shift = 1.5 * (hi - lo);
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  for (int c = 0; c < k; ++c) {
+    const auto base = std::uint32_t(points.size());
+    for (auto p : soup.points) points.push_back({p[0] + c * shift, p[1], p[2]});
+    for (const auto& t : soup.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return mesh::build_from_triangles(points, tris);
+}
+
+struct RunFigures {
+  double median = 0, p95 = 0, max = 0;
+};
+RunFigures figures(const std::vector<double>& v) {
+  return {median(v), percentile(v, 0.95), v.empty() ? 0 : *std::max_element(v.begin(), v.end())};
+}
+
+// kRuns grabs of kFrames frames on `m`, each from the same mesh. Reports medians over runs.
+void run_pull(benchmark::State& state, const mesh::SurfaceMesh& m, const char* label, bool every_frame_solve) {
+  const PullScene& s = scene();
+  sculpt::Session session;
+  session.load(m);
+  session.set_settings(s.settings);
+  if (every_frame_solve) session.grab_options().field_solve = deform::FieldSolve::EveryFrame;
+  std::vector<RunFigures> wall_runs, cpu_runs;
+  std::vector<double> roi, field, refine, deform, remesh;
+  size_t region = 0;
+  bool capped = false;
+  for (auto _ : state) {
+    for (int run = 0; run < kRuns; ++run) {
+      std::vector<double> wall, cpu;
+      session.grab_begin(s.grab.center, s.grab.handle_radius, s.grab.roi_radius);
+      for (int i = 1; i <= kFrames; ++i) {
+        const double c0 = thread_cpu_ms();
+        const auto t0 = Clock::now();
+        session.grab_drag(s.grab.total_at(double(i) / kFrames));
+        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        cpu.push_back(thread_cpu_ms() - c0);
+        const sculpt::FrameTimings& f = session.last_frame();
+        roi.push_back(f.roi_ms);
+        field.push_back(f.field_ms);
+        refine.push_back(f.refine_ms);
+        deform.push_back(f.deform_ms);
+        remesh.push_back(f.remesh_ms);
+        region = std::max(region, size_t(f.roi_vertices));
+        capped = capped || f.roi_capped;
+        session.clear_changes();
+      }
+      session.grab_end();
+      session.undo();  // every run pulls the same mesh
+      wall_runs.push_back(figures(wall));
+      cpu_runs.push_back(figures(cpu));
+    }
+  }
+  auto med = [](const std::vector<RunFigures>& runs, double RunFigures::*f) {
+    std::vector<double> v;
+    for (const RunFigures& r : runs) v.push_back(r.*f);
+    return median(v);
+  };
+  state.counters["frame_ms_median"] = med(wall_runs, &RunFigures::median);
+  state.counters["frame_ms_p95"] = med(wall_runs, &RunFigures::p95);
+  state.counters["frame_ms_max"] = med(wall_runs, &RunFigures::max);
+  state.counters["cpu_ms_median"] = med(cpu_runs, &RunFigures::median);
+  state.counters["cpu_ms_p95"] = med(cpu_runs, &RunFigures::p95);
+  state.counters["cpu_ms_max"] = med(cpu_runs, &RunFigures::max);
+  std::printf("pull %-28s %7zu faces: frame ms median/p95/max wall %.2f / %.2f / %.2f, cpu %.2f / %.2f / %.2f; "
+              "phase medians roi %.2f field %.2f refine %.2f deform %.2f remesh %.2f; ROI up to %zu vertices%s\n",
+              label, m.n_faces(), med(wall_runs, &RunFigures::median), med(wall_runs, &RunFigures::p95),
+              med(wall_runs, &RunFigures::max), med(cpu_runs, &RunFigures::median), med(cpu_runs, &RunFigures::p95),
+              med(cpu_runs, &RunFigures::max), median(roi), median(field), median(refine), median(deform),
+              median(remesh), region, capped ? " (capped)" : "");
+  std::fflush(stdout);
+}
+
+void BM_PullFrame(benchmark::State& state) {
+  const PullScene& s = scene();
+  if (!s.ok) {
+    state.SkipWithError("../shared/meshes/dragon.off not found; skipped");
+    return;
+  }
+  run_pull(state, s.mesh, "dragon", false);
+}
+BENCHMARK(BM_PullFrame)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The paper's way: ROI and field solved from scratch every frame.
+void BM_PullFrameEveryFrameSolve(benchmark::State& state) {
+  const PullScene& s = scene();
+  if (!s.ok) {
+    state.SkipWithError("../shared/meshes/dragon.off not found; skipped");
+    return;
+  }
+  run_pull(state, s.mesh, "dragon, every-frame solve", true);
+}
+BENCHMARK(BM_PullFrameEveryFrameSolve)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_PullFrameCopies(benchmark::State& state) {
+  const PullScene& s = scene();
+  if (!s.ok) {
+    state.SkipWithError("../shared/meshes/dragon.off not found; skipped");
+    return;
+  }
+  const int k = int(state.range(0));
+  const mesh::SurfaceMesh m = copies(s.mesh, k);
+  run_pull(state, m, (std::to_string(k) + " dragons").c_str(), false);
+}
+BENCHMARK(BM_PullFrameCopies)->Arg(4)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+
+namespace {
+
+// Only builds the scene (and writes build/bench/pull-scene.json for the WebAssembly run).
+void BM_PullScene(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(scene().ok);
+  if (!scene().ok) state.SkipWithError("../shared/meshes/dragon.off not found; skipped");
+}
+BENCHMARK(BM_PullScene)->Iterations(1);
+
+// The carried field against a full solve of the same region on the same surface, every frame of
+// the pull (the deformer and one region iteration per frame, as a grab frame runs them).
+void BM_PullFieldError(benchmark::State& state) {
+  const PullScene& s = scene();
+  if (!s.ok) {
+    state.SkipWithError("../shared/meshes/dragon.off not found; skipped");
+    return;
+  }
+  std::vector<double> err;
+  int refreshes = 0;
+  for (auto _ : state) {
+    mesh::SurfaceMesh m = s.mesh;
+    remesh::RemeshOptions o = remesh::default_options_for(m);
+    o.epsilon = s.settings["epsilon"];
+    o.min_length = s.settings["min_length"];
+    o.max_length = s.settings["max_length"];
+    o.feature_angle_deg = 0;
+    remesh::Remesher remesher(m, o);
+    deform::HandleDeformer d;
+    d.begin(m, s.grab.center, s.grab.handle_radius, s.grab.roi_radius);
+    for (int i = 1; i <= kFrames; ++i) {
+      deform::StepResult& r = d.step(m, s.grab.total_at(double(i) / kFrames), o.epsilon);
+      err.push_back(d.field_error_vs_full_solve(m));
+      refreshes = r.field_refreshes;
+      remesher.iterate_region(r.region);
+    }
+  }
+  const double first_refresh = err.empty() ? 0 : err.front();
+  state.counters["field_error_median"] = median(err);
+  state.counters["field_error_max"] = err.empty() ? 0 : *std::max_element(err.begin(), err.end());
+  std::printf("pull field error (max |w - w_full| per frame): median %.3f, p95 %.3f, max %.3f, first frame %.3f; "
+              "%d exact solves finished in %d frames\n",
+              median(err), percentile(err, 0.95), err.empty() ? 0 : *std::max_element(err.begin(), err.end()),
+              first_refresh, refreshes, kFrames);
+  std::fflush(stdout);
+}
+BENCHMARK(BM_PullFieldError)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
