@@ -110,6 +110,7 @@ class PropertyContainer {
       }
   }
   size_t size() const { return size_; }
+  size_t capacity() const { return capacity_; }
   size_t n_arrays() const { return arrays_.size(); }
   BasePropertyArray* array(size_t i) const { return arrays_[i].get(); }
   // A copy of another container's array (same element count), e.g. one an algorithm added to the

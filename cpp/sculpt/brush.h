@@ -5,7 +5,8 @@
 // vertices plus a ring, the same interleaving as a grab frame (PAPER.md section 4).
 //
 // Nothing global happens per stamp: the stamp's vertex is found by walking from the previous
-// stamp's vertex (only the first stamp of a stroke scans the surface's faces), and the mesh is
+// stamp's vertex (a stroke's first stamp walks from the last stroke's, and scans the surface only
+// when that walk does not reach the point), and the mesh is
 // not garbage-collected during the stroke (the Session compacts it afterwards when deleted slots
 // add up).
 #include <vector>
@@ -82,6 +83,7 @@ class BrushStroker {
   Point grab_centre_{0.0};  // grab: the surface point being dragged (moves with the pointer)
   Point grab_target_{0.0};  // grab: the path point of the last stamp
   std::vector<mesh::Vertex> last_region_;  // for re-seeding when a seed was collapsed away
+  mesh::Vertex last_stroke_seed_;  // where the last stamp was: the next stroke's start walks from it
 };
 
 }  // namespace adasculpt::sculpt

@@ -76,9 +76,16 @@ struct Session::Impl {
   // clear_changes() calls.
   UndoLog history;
   std::vector<mesh::Vertex> step_touched;
+  size_t step_touched_from = 0;  // where the current step's vertices start in changes.touched_vertices
 
   deform::HandleDeformer deformer;
-  std::unique_ptr<remesh::Remesher> remesher;  // alive during a grab or a stroke only
+  // Alive during a grab or a stroke, and kept from one stroke to the next while features are off
+  // (the sculpting default): making one marks the boundary edges and classifies every vertex, a
+  // pass over the whole mesh (2.5 ms a stroke at 1.1M triangles). Its per-slot arrays follow the
+  // strokes' splits and collapses; anything else that changes the mesh (an undo, a grab, a new
+  // mesh) drops it.
+  std::unique_ptr<remesh::Remesher> remesher;
+  bool remesher_kept = false;  // the remesher is a stroke's, kept for the next one
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
@@ -89,7 +96,18 @@ struct Session::Impl {
   FrameTimings last;
   ChangeSet changes;
 
+  void drop_remesher() {
+    remesher.reset();
+    remesher_kept = false;
+  }
   void mesh_replaced() {
+    drop_remesher();
+    if (options.feature_angle_deg == 0 && options.epsilon > 0) {
+      // The strokes' remesher, made with the mesh (its arrays on a 1.1M-triangle mesh are a
+      // per-mesh cost: made in the first stroke they took a few hundred milliseconds of it).
+      remesher = std::make_unique<remesh::Remesher>(mesh, options);
+      remesher_kept = true;
+    }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
     tree_valid = false;
     changes.everything = true;
@@ -107,9 +125,18 @@ struct Session::Impl {
     if (!has_mesh) throw std::logic_error(std::string(what) + ": no mesh loaded");
   }
   // A grab or a stroke starts: its step is recorded when it ends (commit_step).
-  void push_undo() { step_touched.clear(); }
+  void push_undo() {
+    step_touched.clear();
+    step_touched_from = changes.touched_vertices.size();
+  }
+  // The step's share of changes.touched_vertices (the viewer may not have read earlier ones yet).
+  void move_step_touched() {
+    const auto& t = changes.touched_vertices;
+    step_touched.insert(step_touched.end(), t.begin() + std::ptrdiff_t(std::min(step_touched_from, t.size())), t.end());
+    step_touched_from = 0;
+  }
   void commit_step() {
-    step_touched.insert(step_touched.end(), changes.touched_vertices.begin(), changes.touched_vertices.end());
+    move_step_touched();
     history.commit_local(mesh, step_touched);
     step_touched.clear();
     step_touched.shrink_to_fit();
@@ -124,8 +151,13 @@ struct Session::Impl {
   void end_grab() {
     if (!grabbing && !brushing) return;
     if (grabbing) deformer.end();
+    if (brushing && options.feature_angle_deg == 0) {
+      remesher->disable_mirror();
+      remesher_kept = true;
+    } else {
+      drop_remesher();
+    }
     grabbing = brushing = false;
-    remesher.reset();
     // The step is recorded from the slots around what it touched (no pass over the mesh). The
     // mesh is not compacted here: the history refers to slots, and deleted slots stay until a
     // whole-mesh step (load, restore, remesh) starts the numbering over. Every reader skips them
@@ -142,6 +174,7 @@ struct Session::Impl {
     if (whole) {
       mesh_replaced();
     } else {
+      drop_remesher();  // its arrays were not logged: the slots the step brought back hold defaults
       tree_valid = false;
       changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
@@ -258,7 +291,8 @@ void Session::brush_begin(const deform::BrushSettings& settings) {
   s.end_grab();
   s.brush.begin(settings);
   s.push_undo();
-  s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  if (!s.remesher_kept) s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  s.remesher_kept = false;
   s.brushing = true;
 }
 
@@ -407,8 +441,7 @@ const FrameTimings& Session::last_frame() const { return impl_->last; }
 const ChangeSet& Session::changes() const { return impl_->changes; }
 void Session::clear_changes() {
   Impl& s = *impl_;
-  if (s.grabbing || s.brushing)  // the step in progress still needs them when it ends
-    s.step_touched.insert(s.step_touched.end(), s.changes.touched_vertices.begin(), s.changes.touched_vertices.end());
+  if (s.grabbing || s.brushing) s.move_step_touched();  // the step in progress still needs them when it ends
   impl_->changes.topology_changed = false;
   impl_->changes.everything = false;
   impl_->changes.touched_vertices.clear();

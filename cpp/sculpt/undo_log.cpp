@@ -72,6 +72,7 @@ std::vector<ArrayPair> pairs_of(const PropertyContainer& m, const PropertyContai
 // Copies slots [lo, hi) and the listed slots of every array from the mesh to the shadow.
 void copy_to_shadow(const PropertyContainer& m, PropertyContainer& s, const std::vector<std::uint32_t>& slots,
                     size_t lo, size_t hi) {
+  if (m.size() > s.capacity()) s.reserve(2 * m.size());  // grows like the mesh: not a copy per step
   if (s.size() != m.size()) s.resize(m.size());
   for (const ArrayPair& p : pairs_of(m, s)) {
     const std::uint8_t* from = p.mesh->raw();
@@ -175,6 +176,14 @@ UndoLog& UndoLog::operator=(UndoLog&&) noexcept = default;
 void UndoLog::reset(const SurfaceMesh& m) {
   shadow_ = std::make_unique<SurfaceMesh>(m);
   sync_arrays(*shadow_);
+  // Room for the first strokes and the stamps of commit_local, now (with the copy) rather than in
+  // the first stroke.
+  shadow_->reserve_room_for_edits();
+  for (int k = 0; k < kKinds; ++k) {
+    const size_t n = container(m, k).size();
+    stamp_[k].assign(n + n / 4, 0u);
+  }
+  epoch_ = 0;
   undo_.clear();
   redo_.clear();
   undo_bytes_ = 0;
