@@ -187,7 +187,9 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
     const auto t0 = Clock::now();
     Point c0;
     seed_ = locate_by_walking(mesh, last_stroke_seed_, p, &c0);
-    if (!seed_.is_valid()) seed_ = locate(mesh, p, &c0);
+    const bool walked = seed_.is_valid();
+    if (!walked) seed_ = locate(mesh, p, &c0);
+    if (start_hook_) start_hook_(mesh, seed_, walked);
     if (symmetric()) {
       // An exactly symmetric mesh stays so, vertex for vertex: the remesher pairs its operations
       // across the plane and the deformer mirrors the first stamp (see Remesher::enable_mirror).

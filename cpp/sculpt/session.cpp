@@ -9,12 +9,14 @@
 #include <memory>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "deform/handle_deformer.h"
 #include "geometry/aabb_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
+#include "mesh/flat_walk.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
 #include "sculpt/session_file.h"
@@ -86,6 +88,15 @@ struct Session::Impl {
   // mesh) drops it.
   std::unique_ptr<remesh::Remesher> remesher;
   bool remesher_kept = false;  // the remesher is a stroke's, kept for the next one
+
+  // Detail that follows the object: a stroke applies the detail settings (fractions of the scene's
+  // diagonal) to the connected component under the brush, so loading more objects does not make
+  // every stroke coarser. The component's diagonal is measured by a walk over it at the stroke's
+  // start, and reused while strokes start on the same component.
+  double component_diagonal = 0;  // of the last stroke's component; 0 = unknown
+  std::vector<std::uint32_t> component_mark;
+  std::uint32_t component_run = 0;
+  std::vector<mesh::Vertex> component_queue;
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
@@ -100,7 +111,51 @@ struct Session::Impl {
     remesher.reset();
     remesher_kept = false;
   }
+  // The bounding-box diagonal of the connected component holding v (a walk over it).
+  double measure_component(mesh::Vertex v) {
+    if (component_mark.size() < mesh.vertices_size()) component_mark.resize(mesh.vertices_size() * 5 / 4 + 16, 0u);
+    if (++component_run == 0) {
+      std::fill(component_mark.begin(), component_mark.end(), 0u);
+      component_run = 1;
+    }
+    Point lo = mesh.position(v), hi = lo;
+    component_queue.assign(1, v);
+    component_mark[v.idx] = component_run;
+    const auto* hc = mesh.halfedge_connectivity_data();
+    const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+    for (size_t i = 0; i < component_queue.size(); ++i) {
+      const mesh::Vertex u = component_queue[i];
+      lo = glm::min(lo, mesh.position(u));
+      hi = glm::max(hi, mesh.position(u));
+      mesh::for_each_outgoing(hc, vh, u, [&](mesh::Halfedge h) {
+        const mesh::Vertex w = hc[h.idx].to;
+        if (component_mark[w.idx] != component_run) {
+          component_mark[w.idx] = component_run;
+          component_queue.push_back(w);
+        }
+      });
+    }
+    return glm::length(hi - lo);
+  }
+  // A stroke found the surface at `seed`: its remeshing options, the detail settings scaled from
+  // the scene's diagonal to the component's (or the stroke's own constant detail).
+  void start_stroke(mesh::Vertex seed, bool same_component) {
+    if (!same_component || !(component_diagonal > 0)) component_diagonal = measure_component(seed);
+    remesh::RemeshOptions o = options;
+    const double scale = component_diagonal > 0 && diagonal > 0 ? component_diagonal / diagonal : 1.0;
+    o.epsilon *= scale;
+    o.min_length *= scale;
+    o.max_length *= scale;
+    const double detail = brush.settings().detail;
+    if (detail > 0) {
+      // Constant detail: the clamp gives every edge this length (Remesher: clamp_decides_sizing).
+      o.min_length = o.max_length = detail;
+      o.epsilon = std::min(o.epsilon, detail);
+    }
+    remesher->set_options(o);
+  }
   void mesh_replaced() {
+    component_diagonal = 0;
     drop_remesher();
     if (options.feature_angle_deg == 0 && options.epsilon > 0) {
       // The strokes' remesher, made with the mesh (its arrays on a 1.1M-triangle mesh are a
@@ -175,6 +230,7 @@ struct Session::Impl {
       mesh_replaced();
     } else {
       drop_remesher();  // its arrays were not logged: the slots the step brought back hold defaults
+      component_diagonal = 0;
       tree_valid = false;
       changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
@@ -183,7 +239,10 @@ struct Session::Impl {
   }
 };
 
-Session::Session() : impl_(std::make_unique<Impl>()) {}
+Session::Session() : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.brush.set_start_hook([&s](const mesh::SurfaceMesh&, mesh::Vertex seed, bool walked) { s.start_stroke(seed, walked); });
+}
 Session::~Session() = default;
 
 void Session::load(mesh::SurfaceMesh m) {
