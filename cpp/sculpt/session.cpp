@@ -94,6 +94,9 @@ struct Session::Impl {
   // every stroke coarser. The component's diagonal is measured by a walk over it at the stroke's
   // start, and reused while strokes start on the same component.
   double component_diagonal = 0;  // of the last stroke's component; 0 = unknown
+  // Which of epsilon, min_length, max_length are fractions of the diagonal (the defaults, and
+  // percentages): those follow the object; lengths given as numbers stay as given.
+  bool relative[3] = {true, true, true};
   std::vector<std::uint32_t> component_mark;
   std::uint32_t component_run = 0;
   std::vector<mesh::Vertex> component_queue;
@@ -143,9 +146,10 @@ struct Session::Impl {
     if (!same_component || !(component_diagonal > 0)) component_diagonal = measure_component(seed);
     remesh::RemeshOptions o = options;
     const double scale = component_diagonal > 0 && diagonal > 0 ? component_diagonal / diagonal : 1.0;
-    o.epsilon *= scale;
-    o.min_length *= scale;
-    o.max_length *= scale;
+    if (relative[0]) o.epsilon *= scale;
+    if (relative[1]) o.min_length *= scale;
+    if (relative[2]) o.max_length *= scale;
+    if (o.min_length > o.max_length) o.min_length = o.max_length;  // one relative, the other not
     const double detail = brush.settings().detail;
     if (detail > 0) {
       // Constant detail: the clamp gives every edge this length (Remesher: clamp_decides_sizing).
@@ -253,6 +257,7 @@ void Session::load(mesh::SurfaceMesh m) {
   s.mesh = std::move(m);
   s.has_mesh = true;
   s.new_base();
+  for (bool& r : s.relative) r = true;
   s.options = remesh::default_options_for(s.mesh);
   s.options.adaptive = true;
   s.options.feature_angle_deg = 0;
@@ -282,6 +287,9 @@ void Session::set_settings(const nlohmann::json& j) {
     throw std::invalid_argument("settings: 'min_length' must not exceed 'max_length'");
   remesh::check_options(o);
   s.options = o;
+  const std::optional<LengthSetting>* given[3] = {&p.epsilon, &p.min_length, &p.max_length};
+  for (int i = 0; i < 3; ++i)
+    if (*given[i]) s.relative[i] = (*given[i])->percent;
   if (s.remesher) s.remesher->set_options(o);
 }
 
@@ -585,6 +593,7 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   s.has_mesh = true;
   s.history = std::move(history);
   s.options = o;
+  for (bool& rel : s.relative) rel = true;  // the blob holds lengths; the app's settings are percentages
   s.diagonal = v[4];
   s.last = FrameTimings{};
   s.mesh_replaced();

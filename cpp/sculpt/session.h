@@ -68,10 +68,11 @@ class Session {
   // Keys: epsilon, min_length, max_length (number = absolute length, or a string "0.05%" =
   // percent of the bounding-box diagonal), features (dihedral angle in degrees, 0 = off).
   // Unknown keys and bad values throw std::invalid_argument naming the field; on error nothing
-  // changes. Keys not given keep their current value. A brush stroke applies epsilon, min_length
-  // and max_length to the connected component under the brush: scaled by its bounding-box
+  // changes. Keys not given keep their current value. A brush stroke applies the percentages (and
+  // the defaults) to the connected component under the brush: scaled by its bounding-box
   // diagonal over the scene's (on a mesh of one piece, as given), so that loading more objects
-  // does not coarsen the detail of each; a stroke's own `detail` (BrushSettings) replaces them.
+  // does not coarsen the detail of each; lengths given as numbers stay as given. A stroke's own
+  // `detail` (BrushSettings) replaces them.
   void set_settings(const nlohmann::json& s);
   // {"epsilon":..., "min_length":..., "max_length":..., "features":..., "diagonal":...} (absolute).
   nlohmann::json settings() const;

@@ -341,7 +341,7 @@ bool UndoLog::commit_local(const SurfaceMesh& m, const std::vector<Vertex>& touc
       b.values.push_back(std::move(v));
     }
   }
-  if (!any) return false;
+  (void)any;  // a stroke that changed nothing is still a step: undo takes back "the stroke"
   step->deleted_held = S.deleted_counts();
   for (int k = 0; k < kKinds; ++k)
     copy_to_shadow(container(m, k), container(S, k), changed[k], container(S, k).size(), container(m, k).size());

@@ -44,7 +44,8 @@ class UndoLog {
   void reset(const mesh::SurfaceMesh& m);
   // The mesh changed only around `touched` (vertices whose positions or incident elements changed,
   // duplicates and deleted ones allowed) since the last reset/commit/undo/redo: one undo step.
-  // Drops the redo steps; returns false (no step) when nothing changed.
+  // Drops the redo steps. A step that changed nothing is still a step (undo takes back "the
+  // stroke", as the user sees it).
   bool commit_local(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched);
   // Any change at all (a whole-mesh remesh, compaction): one step holding the mesh before it.
   void commit_whole(const mesh::SurfaceMesh& m);

@@ -13,22 +13,13 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "sculpt_test_util.h"
 
 using namespace adasculpt;
 
 namespace {
 
-mesh::SurfaceMesh spheres(int copies) {
-  const io::PolygonSoup one = io::soup_from_mesh(mesh::make_icosphere(4));
-  std::vector<std::array<double, 3>> points;
-  std::vector<std::array<uint32_t, 3>> tris;
-  for (int c = 0; c < copies; ++c) {
-    const uint32_t base = uint32_t(points.size());
-    for (auto p : one.points) points.push_back({p[0] + 3.0 * c, p[1], p[2]});
-    for (auto t : one.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
-  }
-  return mesh::build_from_triangles(points, tris);
-}
+using test::sphere_copies;
 
 sculpt::BrushStroke draw_on_first_sphere(double detail = 0) {
   sculpt::BrushStroke st;
@@ -42,7 +33,7 @@ sculpt::BrushStroke draw_on_first_sphere(double detail = 0) {
 // The vertices a stroke added or removed on the first sphere (the others are untouched).
 long vertex_change(int copies, const nlohmann::json& settings) {
   sculpt::Session s;
-  s.load(spheres(copies));
+  s.load(sphere_copies(copies));
   s.set_settings(settings);
   const long before = long(s.mesh().n_vertices());
   s.brush_stroke(draw_on_first_sphere());

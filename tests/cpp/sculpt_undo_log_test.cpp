@@ -15,6 +15,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "sculpt_test_util.h"
 
 using namespace adasculpt;
 
@@ -140,9 +141,7 @@ TEST(SculptUndoLog, RandomStrokesGrabsUndosAndRedosAreExactToTheSlot) {
       continue;
     }
     s.mesh().validate();
-    const bool new_step = s.undo_steps() > undo_model.size() ||
-                          (s.undo_steps() == sculpt::Session::kMaxUndoSteps && !same_slots(s.mesh(), before));
-    if (!new_step) continue;  // nothing changed: no step
+    // Every stroke, grab and remesh is one step, even one that changed nothing.
     undo_model.push_back(before);
     redo_model.clear();
     while (undo_model.size() > s.undo_steps()) undo_model.erase(undo_model.begin());
@@ -161,25 +160,14 @@ TEST(SculptUndoLog, RandomStrokesGrabsUndosAndRedosAreExactToTheSlot) {
   }
 }
 
-// `copies` disjoint copies of an icosphere(4), side by side along x.
-mesh::SurfaceMesh spheres(int copies) {
-  const io::PolygonSoup one = io::soup_from_mesh(mesh::make_icosphere(4));
-  std::vector<std::array<double, 3>> points;
-  std::vector<std::array<uint32_t, 3>> tris;
-  for (int c = 0; c < copies; ++c) {
-    const uint32_t base = uint32_t(points.size());
-    for (auto p : one.points) points.push_back({p[0] + 3.0 * c, p[1], p[2]});
-    for (auto t : one.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
-  }
-  return mesh::build_from_triangles(points, tris);
-}
+using test::sphere_copies;
 
 // A step holds what it changed, not the mesh: the same stroke on the first of 1 or 16 spheres
 // makes a step of the same size, a small fraction of the mesh.
 TEST(SculptUndoLog, AStepHoldsTheChangedRegionNotTheMesh) {
   auto step_bytes = [](int copies) {
     sculpt::Session s;
-    s.load(spheres(copies));
+    s.load(sphere_copies(copies));
     s.set_settings({{"epsilon", 0.002}, {"min_length", 0.03}, {"max_length", 0.06}});
     sculpt::BrushStroke st;
     st.settings.tool = deform::BrushTool::Draw;
