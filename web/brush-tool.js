@@ -52,7 +52,7 @@ const STRENGTH_STEP = 0.05;
 const RADIUS_FACTOR = 1.15;
 
 // The page API's `brush` (app.brush). session: the embind Session; applyChanges(changes): copies a
-// frame's changes into three.js; afterStroke(): the stroke ended (mesh compacted); defaults():
+// frame's changes into three.js; afterStroke(): the stroke ended; defaults():
 // {tool, radius (absolute), strength, symmetry} from the panel.
 export function createBrushApi({ session, applyChanges, afterStroke, defaults }) {
   const api = {
