@@ -28,3 +28,4 @@ for b in scripts/bench-*.sh; do
   ran=1
 done
 ((ran)) || echo "no benchmarks yet (tests/bench/*.cpp or scripts/bench-*.sh)"
+# Stroke scaling and undo memory (tests/bench/stroke_scaling_bench.cpp) run above; docs/undo-and-scaling.md: bash scripts/undo-scaling-doc.sh

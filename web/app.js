@@ -236,7 +236,7 @@ export async function createSculptApp(container, options = {}) {
         autosave.changed();
       },
       defaults: () => ({ tool: state.tool === 'pull' ? 'draw' : state.tool, radius: (state.brushRadius / 100) * diagonal,
-        strength: state.brushStrength, symmetry: state.symmetry }),
+        strength: state.brushStrength, symmetry: state.symmetry, detailPixels: state.detailPixels }),
     }),
     get tool() { return palette.tool; },
     setTool(name) { return palette.setTool(name); },

@@ -27,12 +27,18 @@ export const TOOLS = [
 ];
 export const SYMMETRY = ['x', 'y', 'z', 'off'];
 // The brush part of the app state (radius in percent of the diagonal, like the panel's lengths).
-export const BRUSH_STATE = { tool: 'pull', brushRadius: 5, brushStrength: 0.5, symmetry: 'x' };
+// detailPixels > 0: strokes remesh to edges of that many screen pixels at the brush (the detail
+// follows the view, Blender's relative detail) instead of the remesh settings (epsilon, lengths).
+export const BRUSH_STATE = { tool: 'pull', brushRadius: 5, brushStrength: 0.5, symmetry: 'x', detailPixels: 0 };
 
 // setParams keys of the brushes besides brushRadius (a length, handled with the grab radii): checked values.
 export const BRUSH_PARAMS = {
   brushStrength(v) {
     if (typeof v !== 'number' || !(v >= 0 && v <= 1)) throw new Error('setParams: brushStrength must be a number between 0 and 1');
+    return v;
+  },
+  detailPixels(v) {
+    if (typeof v !== 'number' || !(v >= 0 && v <= 100)) throw new Error('setParams: detailPixels must be a number between 0 (off) and 100');
     return v;
   },
   symmetry(v) {
@@ -46,11 +52,13 @@ const STRENGTH_STEP = 0.05;
 const RADIUS_FACTOR = 1.15;
 
 // The page API's `brush` (app.brush). session: the embind Session; applyChanges(changes): copies a
-// frame's changes into three.js; afterStroke(): the stroke ended (mesh compacted); defaults():
+// frame's changes into three.js; afterStroke(): the stroke ended; defaults():
 // {tool, radius (absolute), strength, symmetry} from the panel.
 export function createBrushApi({ session, applyChanges, afterStroke, defaults }) {
   const api = {
-    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing}; missing ones from the panel.
+    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing, detail (an edge length for
+    // this stroke), pixelSize (the world size of a screen pixel at the brush: with the panel's detailPixels, the
+    // stroke's detail)}; missing ones from the panel.
     begin(settings = {}) {
       session.brushBegin(coreSettings(settings, defaults()));
     },
@@ -98,7 +106,14 @@ function coreSettings(s, d) {
     symmetry: symmetry === 'off' || symmetry === false || symmetry === null ? 'none' : symmetry,
     ...(s.invert !== undefined ? { invert: s.invert } : {}),
     ...(s.spacing !== undefined ? { spacing: s.spacing } : {}),
+    ...(detailLength(s, d) > 0 ? { detail: detailLength(s, d) } : {}),
   };
+}
+
+// The stroke's own edge length: given, or the panel's detail in pixels times a pixel's size at the brush.
+function detailLength(s, d) {
+  if (s.detail !== undefined) return s.detail;
+  return d.detailPixels > 0 && s.pixelSize > 0 ? d.detailPixels * s.pixelSize : 0;
 }
 
 export class BrushTool {
@@ -141,7 +156,7 @@ export class BrushTool {
     e.stopImmediatePropagation();
     e.preventDefault();
     const inverted = e.ctrlKey || e.altKey;
-    if (!this.core.begin({ invert: inverted })) return;
+    if (!this.core.begin({ invert: inverted, pixelSize: pixelSizeAt(this.viewer, hit.point) })) return;
     this.viewer.controls.enabled = false;
     try {
       e.target.setPointerCapture(e.pointerId); // strokes continue outside the canvas
@@ -291,3 +306,13 @@ function planeHit(ray, plane, facing) {
 
 function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }
 function round(x, digits) { return Number(x.toFixed(digits)); }
+
+// The world size of one screen pixel at `point` (perspective: grows with the distance; orthographic:
+// the same everywhere).
+function pixelSizeAt(viewer, point) {
+  const camera = viewer.camera;
+  const height = viewer.renderer.domElement.clientHeight || 1;
+  if (camera.isOrthographicCamera) return (camera.top - camera.bottom) / camera.zoom / height;
+  const distance = camera.position.distanceTo(point);
+  return (2 * distance * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2)) / camera.zoom / height;
+}

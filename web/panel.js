@@ -35,6 +35,9 @@ export function createPanel(parent, state, actions) {
   sculpt.add(state, 'brushRadius', 0.5, 30, 0.1).name('radius (%)').onChange(() => actions.brush());
   sculpt.add(state, 'brushStrength', 0.05, 1, 0.01).name('strength').onChange(() => actions.brush());
   sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
+  // Detail in screen pixels (edges of that many pixels at the brush); 0: the remesh settings, relative to the
+  // object under the brush.
+  sculpt.add(state, 'detailPixels', 0, 40, 1).name('detail (px, 0: ε)').onChange(() => actions.brush());
 
   const view = gui.addFolder('Display');
   view.add(state, 'shading', ['matcap', 'standard']).name('shading').onChange(() => actions.display());

@@ -257,14 +257,14 @@ class SessionHandle {
   bool undo() {
     return guarded(false, [&] {
       bool ok = session_.undo();
-      sync(true);
+      sync(false);  // the change set says what the step touched (everything for a whole-mesh step)
       return ok;
     });
   }
   bool redo() {
     return guarded(false, [&] {
       bool ok = session_.redo();
-      sync(true);
+      sync(false);
       return ok;
     });
   }

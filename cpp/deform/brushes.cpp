@@ -69,6 +69,8 @@ void check_brush_settings(const BrushSettings& s) {
   // Below 0.05 a stroke would cost hundreds of remeshing iterations per radius of travel.
   if (!(s.spacing >= 0.05 && s.spacing <= 4)) throw std::invalid_argument("brush: 'spacing' must be between 0.05 and 4");
   if (s.symmetry_axis < -1 || s.symmetry_axis > 2) throw std::invalid_argument("brush: 'symmetry' must be x, y, z or none");
+  if (!(s.detail >= 0) || !std::isfinite(s.detail))
+    throw std::invalid_argument("brush: 'detail' must be a non-negative length (0: the session's detail)");
 }
 
 double brush_falloff(double distance, double radius) {

@@ -32,6 +32,10 @@ struct BrushSettings {
   double spacing = 0.25;  // a stamp every spacing * radius of pointer travel
   bool invert = false;    // draw/inflate/crease inward, flatten/pinch push away; smooth, grab: no effect
   int symmetry_axis = -1; // 0, 1, 2: mirror across the plane x, y or z = 0; -1: none
+  // > 0: this stroke remeshes to this edge length (absolute), instead of the session's detail
+  // settings. The viewer's screen-pixel detail mode passes pixels x the size of a pixel at the
+  // brush (Blender's relative detail).
+  double detail = 0;
 };
 // Throws std::invalid_argument "brush: 'radius' must be a positive number" and the like.
 void check_brush_settings(const BrushSettings& s);

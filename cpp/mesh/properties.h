@@ -3,6 +3,7 @@
 // together with the elements they describe, so algorithms can attach data to a mesh without
 // the mesh knowing about them.
 #include <cassert>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,11 @@ class BasePropertyArray {
   // new[i] = old[kept[i]]: used by garbage collection.
   virtual void compact(const std::vector<Index>& kept) = 0;
   virtual std::unique_ptr<BasePropertyArray> clone() const = 0;
+  // Element i occupies bytes [i * element_bytes(), (i + 1) * element_bytes()) of raw(): the undo
+  // log (sculpt/undo_log.h) records and restores slots byte for byte. Every property type is
+  // trivially copyable (checked in PropertyArray).
+  virtual size_t element_bytes() const = 0;
+  virtual std::uint8_t* raw() = 0;
   const std::string& name() const { return name_; }
 
  private:
@@ -33,6 +39,7 @@ template <class T>
 class PropertyArray : public BasePropertyArray {
   // std::vector<bool> has no element references; flags are stored as uint8_t instead.
   static_assert(!std::is_same_v<T, bool>, "use std::uint8_t for flag properties");
+  static_assert(std::is_trivially_copyable_v<T>, "properties are copied byte for byte (undo log)");
 
  public:
   PropertyArray(std::string name, T default_value)
@@ -48,6 +55,8 @@ class PropertyArray : public BasePropertyArray {
   std::unique_ptr<BasePropertyArray> clone() const override {
     return std::make_unique<PropertyArray<T>>(*this);
   }
+  size_t element_bytes() const override { return sizeof(T); }
+  std::uint8_t* raw() override { return reinterpret_cast<std::uint8_t*>(data_.data()); }
   std::vector<T>& vector() { return data_; }
   const std::vector<T>& vector() const { return data_; }
   const T& default_value() const { return default_; }
@@ -101,6 +110,16 @@ class PropertyContainer {
       }
   }
   size_t size() const { return size_; }
+  size_t capacity() const { return capacity_; }
+  size_t n_arrays() const { return arrays_.size(); }
+  BasePropertyArray* array(size_t i) const { return arrays_[i].get(); }
+  // A copy of another container's array (same element count), e.g. one an algorithm added to the
+  // mesh, into a copy of that mesh.
+  void add_clone(const BasePropertyArray& a) {
+    if (find(a.name())) throw std::logic_error("property '" + a.name() + "' already exists");
+    arrays_.push_back(a.clone());
+    arrays_.back()->reserve(capacity_);
+  }
   void resize(size_t n) {
     if (n > capacity_) reserve(n);
     for (auto& a : arrays_) a->resize(n);

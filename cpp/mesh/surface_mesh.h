@@ -144,6 +144,22 @@ class SurfaceMesh {
   // face becomes (a, d, c) and the second (d, b, c).
   void flip(Edge e);
 
+  // ---- raw slot access for the undo log (sculpt/undo_log.h), which copies slots byte for byte and
+  // truncates or regrows the arrays; it keeps the deletion counters in step with the flags.
+  PropertyContainer& vertex_properties() { return vprops_; }
+  PropertyContainer& halfedge_properties() { return hprops_; }
+  PropertyContainer& edge_properties() { return eprops_; }
+  PropertyContainer& face_properties() { return fprops_; }
+  struct DeletedCounts {
+    size_t vertices = 0, edges = 0, faces = 0;
+  };
+  DeletedCounts deleted_counts() const { return {deleted_vertices_, deleted_edges_, deleted_faces_}; }
+  void set_deleted_counts(const DeletedCounts& c) {
+    deleted_vertices_ = c.vertices;
+    deleted_edges_ = c.edges;
+    deleted_faces_ = c.faces;
+  }
+
   // Throws std::logic_error describing the first broken connectivity invariant.
   void validate() const;
 

@@ -5,9 +5,11 @@
 // vertices plus a ring, the same interleaving as a grab frame (PAPER.md section 4).
 //
 // Nothing global happens per stamp: the stamp's vertex is found by walking from the previous
-// stamp's vertex (only the first stamp of a stroke scans the surface's faces), and the mesh is
+// stamp's vertex (a stroke's first stamp walks from the last stroke's, and scans the surface only
+// when that walk does not reach the point), and the mesh is
 // not garbage-collected during the stroke (the Session compacts it afterwards when deleted slots
 // add up).
+#include <functional>
 #include <vector>
 
 #include "deform/brushes.h"
@@ -60,6 +62,11 @@ class BrushStroker {
   size_t face_budget() const { return face_budget_; }
   const deform::BrushSettings& settings() const { return settings_; }
   deform::BrushDeformer& deformer() { return deformer_; }
+  // Called once per stroke when its first sample has found the surface, before the first stamp:
+  // the vertex there, and whether it was reached by walking from the last stroke's (then it lies
+  // on the same connected component). The Session sets the stroke's detail there.
+  using StartHook = std::function<void(const mesh::SurfaceMesh&, mesh::Vertex, bool walked)>;
+  void set_start_hook(StartHook hook) { start_hook_ = std::move(hook); }
 
  private:
   void stamp(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& target, double pressure, BrushFrame& f);
@@ -82,6 +89,8 @@ class BrushStroker {
   Point grab_centre_{0.0};  // grab: the surface point being dragged (moves with the pointer)
   Point grab_target_{0.0};  // grab: the path point of the last stamp
   std::vector<mesh::Vertex> last_region_;  // for re-seeding when a seed was collapsed away
+  mesh::Vertex last_stroke_seed_;
+  StartHook start_hook_;  // where the last stamp was: the next stroke's start walks from it
 };
 
 }  // namespace adasculpt::sculpt

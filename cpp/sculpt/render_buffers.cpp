@@ -160,8 +160,7 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
                                            bool topology_changed, bool everything) {
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
   const std::uint32_t nf = std::uint32_t(m.faces_size());
-  // Fewer slots than before only happens after garbage collection, which renumbers everything.
-  if (everything || positions_.empty() || nv < vertex_count_ || nf < face_count_) return rebuild(m);
+  if (everything || positions_.empty()) return rebuild(m);
 
   last_ = RenderChanges{};
   last_.reallocated = reserve(nv, nf);
@@ -170,12 +169,25 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
     epoch_ = 1;
   }
   normal_queue_.clear();
+  std::uint32_t fb = 0, fe = 0;
+  // Fewer slots: an undo took back the slots a step had appended (sculpt/undo_log.h). Their
+  // triangles are emptied; the vertices they leave get new normals (those still in the mesh).
+  if (nf < face_count_) {
+    for (std::uint32_t i = nf; i < face_count_; ++i) {
+      std::uint32_t* t = &indices_[3 * size_t(i)];
+      for (int k = 0; k < 3; ++k)
+        if ((t[0] | t[1] | t[2]) != 0 && t[k] < nv && !m.is_deleted(Vertex(t[k]))) mark_normal(Vertex(t[k]));
+      t[0] = t[1] = t[2] = 0;
+    }
+    extend(fb, fe, nf, face_count_);
+    face_count_ = nf;
+  }
+  if (nv < vertex_count_) vertex_count_ = nv;
 
   // Faces: every face whose triangle changed is incident to a touched live vertex (the contract
   // in the header), is a new slot, or was deleted. So: the faces around touched vertices, the new
   // slots, and one byte per slot for the deletion flags; no walk over the whole connectivity.
-  const bool faces_may_change = topology_changed || nf != face_count_;
-  std::uint32_t fb = 0, fe = 0;
+  const bool faces_may_change = topology_changed || nf != face_count_ || fe > fb;
   auto face = [&](Face f) {
     if (write_face(m, f)) extend(fb, fe, f.idx, f.idx + 1);
   };

@@ -11,6 +11,9 @@
 // so the renderer uploads only those. Work is proportional to the touched set, plus one byte read
 // per face slot (deletion flags) in frames that changed the topology.
 //
+// Fewer slots than the last update (an undo takes back the slots its step appended) empties the
+// triangles of the face slots past the new count, also incrementally.
+//
 // Contract for incremental updates: every live face whose triangle changed has a touched live
 // vertex (the old or the new triangle's). The session's region satisfies it: the remesher only
 // edits edges with both ends in the region (a flip's old edge ends, a collapse's survivor, a

@@ -6,17 +6,21 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <memory>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "geometry/aabb_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
+#include "mesh/flat_walk.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
+#include "sculpt/undo_log.h"
 
 namespace adasculpt::sculpt {
 
@@ -24,64 +28,18 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// Rough heap size of a snapshot, for the history budget.
-size_t mesh_bytes(const mesh::SurfaceMesh& m) {
-  return m.vertices_size() * (sizeof(Point) + 8) + m.halfedges_size() * 16 + m.edges_size() * 2 +
-         m.faces_size() * 8;
-}
-
 // save_state() blob, little-endian (native on x86 and wasm; checked below):
-//   "ADSCSTAT" u32 version=1, f64 epsilon min_length max_length features diagonal,
-//   u32 undo count, u32 redo count, then meshes: current, undo steps oldest..newest, redo steps
-//   farthest..nearest (deque order). Mesh: u32 vertices, u32 triangles, f64 xyz..., u32 abc...
+//   "ADSCSTAT" u32 version=2, f64 epsilon min_length max_length features diagonal,
+//   u32 undo count, u32 redo count, the current mesh as slots (undo_log.h: write_mesh_slots),
+//   then the steps (UndoLog::write_step): undo steps oldest..newest, redo steps farthest..nearest.
 constexpr char kStateMagic[8] = {'A', 'D', 'S', 'C', 'S', 'T', 'A', 'T'};
-constexpr uint32_t kStateVersion = 1;
-
-size_t serialized_size(const mesh::SurfaceMesh& m) { return 8 + m.n_vertices() * 24 + m.n_faces() * 12; }
+constexpr uint32_t kStateVersion = 2;
 
 template <class T>
 void put(std::vector<uint8_t>& out, const T& v) {
   const auto* p = reinterpret_cast<const uint8_t*>(&v);
   out.insert(out.end(), p, p + sizeof(T));
 }
-
-// One mesh of the blob: u32 vertices, u32 triangles, f64 xyz..., u32 abc...
-std::vector<uint8_t> pack_mesh(const mesh::SurfaceMesh& m) {
-  const io::PolygonSoup soup = io::soup_from_mesh(m);
-  const uint32_t nv = uint32_t(soup.points.size()), nf = uint32_t(soup.triangles.size());
-  std::vector<uint8_t> out(8 + size_t(nv) * 24 + size_t(nf) * 12);
-  uint8_t* o = out.data();
-  std::memcpy(o, &nv, 4);
-  std::memcpy(o + 4, &nf, 4);
-  if (nv) std::memcpy(o + 8, soup.points.data(), size_t(nv) * 24);
-  o += 8 + size_t(nv) * 24;
-  // Rotated so that build_from_triangles (whose face halfedge ends at the second corner) gives
-  // back the same face_vertices() order: a save after a restore is byte-identical.
-  for (const auto& t : soup.triangles) {
-    const uint32_t r[3] = {t[2], t[0], t[1]};
-    std::memcpy(o, r, 12);
-    o += 12;
-  }
-  return out;
-}
-
-// A packed mesh checked by StateReader::mesh_bytes (counts, finite positions, indices in range).
-mesh::SurfaceMesh unpack_mesh(const std::vector<uint8_t>& bytes) {
-  uint32_t nv, nf;
-  std::memcpy(&nv, bytes.data(), 4);
-  std::memcpy(&nf, bytes.data() + 4, 4);
-  std::vector<std::array<double, 3>> points(nv);
-  std::vector<std::array<uint32_t, 3>> tris(nf);
-  if (nv) std::memcpy(points.data(), bytes.data() + 8, size_t(nv) * 24);
-  if (nf) std::memcpy(tris.data(), bytes.data() + 8 + size_t(nv) * 24, size_t(nf) * 12);
-  try {
-    return mesh::build_from_triangles(points, tris);
-  } catch (const mesh::TopologyError& e) {
-    throw std::invalid_argument(std::string("saved state: ") + e.what());
-  }
-}
-
-using Packed = std::shared_ptr<const std::vector<uint8_t>>;
 
 struct StateReader {
   const uint8_t* p;
@@ -97,18 +55,6 @@ struct StateReader {
     p += sizeof(T);
     left -= sizeof(T);
     return v;
-  }
-  // The next packed mesh, checked (everything but the topology, which building checks).
-  std::vector<uint8_t> mesh_bytes() {
-    const uint8_t* begin = p;
-    const uint64_t nv = get<uint32_t>(), nf = get<uint32_t>();
-    if (nv * 24 + nf * 12 > left) fail("truncated mesh");
-    if (nf == 0) fail("a mesh without faces");
-    for (uint64_t i = 0; i < 3 * nv; ++i)
-      if (!std::isfinite(get<double>())) fail("non-finite position");
-    for (uint64_t i = 0; i < 3 * nf; ++i)
-      if (get<uint32_t>() >= nv) fail("vertex index out of range");
-    return std::vector<uint8_t>(begin, p);
   }
 };
 
@@ -127,28 +73,33 @@ struct Session::Impl {
   double diagonal = 0;
   remesh::RemeshOptions options;  // adaptive; epsilon/min/max/features resolved to absolute values
 
-  // One undo or redo step: the mesh, or (restored from a saved state and not needed yet) only its
-  // packed bytes, which save_state() also keeps as a cache so that unchanged steps are serialized once.
-  struct Snapshot {
-    mesh::SurfaceMesh mesh;
-    bool built = true;
-    mutable Packed packed;
-    explicit Snapshot(mesh::SurfaceMesh m) : mesh(std::move(m)) {}
-    explicit Snapshot(Packed p) : built(false), packed(std::move(p)) {}
-    // For the history budget (the cache of a built mesh is not counted: it comes and goes).
-    size_t bytes() const { return built ? mesh_bytes(mesh) : packed->size(); }
-    size_t packed_size() const { return packed ? packed->size() : serialized_size(mesh); }
-    const std::vector<uint8_t>& pack() const {
-      if (!packed) packed = std::make_shared<const std::vector<uint8_t>>(pack_mesh(mesh));
-      return *packed;
-    }
-    mesh::SurfaceMesh take() { return built ? std::move(mesh) : unpack_mesh(*packed); }
-  };
-  std::deque<Snapshot> undo, redo;  // meshes before / after the steps
-  size_t undo_bytes = 0;
+  // The history as a log of slot changes (undo_log.h). The mesh is never compacted while it holds
+  // steps (they refer to slots); step_touched gathers the current step's touched vertices across
+  // clear_changes() calls.
+  UndoLog history;
+  std::vector<mesh::Vertex> step_touched;
+  size_t step_touched_from = 0;  // where the current step's vertices start in changes.touched_vertices
 
   Grab grab;
-  std::unique_ptr<remesh::Remesher> remesher;  // alive during a grab or a stroke only
+  // Alive during a grab or a stroke, and kept from one stroke to the next while features are off
+  // (the sculpting default): making one marks the boundary edges and classifies every vertex, a
+  // pass over the whole mesh (2.5 ms a stroke at 1.1M triangles). Its per-slot arrays follow the
+  // strokes' splits and collapses; anything else that changes the mesh (an undo, a grab, a new
+  // mesh) drops it.
+  std::unique_ptr<remesh::Remesher> remesher;
+  bool remesher_kept = false;  // the remesher is a stroke's, kept for the next one
+
+  // Detail that follows the object: a stroke applies the detail settings (fractions of the scene's
+  // diagonal) to the connected component under the brush, so loading more objects does not make
+  // every stroke coarser. The component's diagonal is measured by a walk over it at the stroke's
+  // start, and reused while strokes start on the same component.
+  double component_diagonal = 0;  // of the last stroke's component; 0 = unknown
+  // Which of epsilon, min_length, max_length are fractions of the diagonal (the defaults, and
+  // percentages): those follow the object; lengths given as numbers stay as given.
+  bool relative[3] = {true, true, true};
+  std::vector<std::uint32_t> component_mark;
+  std::uint32_t component_run = 0;
+  std::vector<mesh::Vertex> component_queue;
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
@@ -160,7 +111,63 @@ struct Session::Impl {
   std::string remesh_warning;  // of the last whole-mesh remesh(); empty when it was within its budget
   ChangeSet changes;
 
+  void drop_remesher() {
+    remesher.reset();
+    remesher_kept = false;
+  }
+  // The bounding-box diagonal of the connected component holding v (a walk over it).
+  double measure_component(mesh::Vertex v) {
+    if (component_mark.size() < mesh.vertices_size()) component_mark.resize(mesh.vertices_size() * 5 / 4 + 16, 0u);
+    if (++component_run == 0) {
+      std::fill(component_mark.begin(), component_mark.end(), 0u);
+      component_run = 1;
+    }
+    Point lo = mesh.position(v), hi = lo;
+    component_queue.assign(1, v);
+    component_mark[v.idx] = component_run;
+    const auto* hc = mesh.halfedge_connectivity_data();
+    const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+    for (size_t i = 0; i < component_queue.size(); ++i) {
+      const mesh::Vertex u = component_queue[i];
+      lo = glm::min(lo, mesh.position(u));
+      hi = glm::max(hi, mesh.position(u));
+      mesh::for_each_outgoing(hc, vh, u, [&](mesh::Halfedge h) {
+        const mesh::Vertex w = hc[h.idx].to;
+        if (component_mark[w.idx] != component_run) {
+          component_mark[w.idx] = component_run;
+          component_queue.push_back(w);
+        }
+      });
+    }
+    return glm::length(hi - lo);
+  }
+  // A stroke found the surface at `seed`: its remeshing options, the detail settings scaled from
+  // the scene's diagonal to the component's (or the stroke's own constant detail).
+  void start_stroke(mesh::Vertex seed, bool same_component) {
+    if (!same_component || !(component_diagonal > 0)) component_diagonal = measure_component(seed);
+    remesh::RemeshOptions o = options;
+    const double scale = component_diagonal > 0 && diagonal > 0 ? component_diagonal / diagonal : 1.0;
+    if (relative[0]) o.epsilon *= scale;
+    if (relative[1]) o.min_length *= scale;
+    if (relative[2]) o.max_length *= scale;
+    if (o.min_length > o.max_length) o.min_length = o.max_length;  // one relative, the other not
+    const double detail = brush.settings().detail;
+    if (detail > 0) {
+      // Constant detail: the clamp gives every edge this length (Remesher: clamp_decides_sizing).
+      o.min_length = o.max_length = detail;
+      o.epsilon = std::min(o.epsilon, detail);
+    }
+    remesher->set_options(o);
+  }
   void mesh_replaced() {
+    component_diagonal = 0;
+    drop_remesher();
+    if (options.feature_angle_deg == 0 && options.epsilon > 0) {
+      // The strokes' remesher, made with the mesh (its arrays on a 1.1M-triangle mesh are a
+      // per-mesh cost: made in the first stroke they took a few hundred milliseconds of it).
+      remesher = std::make_unique<remesh::Remesher>(mesh, options);
+      remesher_kept = true;
+    }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
     tree_valid = false;
     changes.everything = true;
@@ -177,38 +184,70 @@ struct Session::Impl {
   void require_mesh(const char* what) const {
     if (!has_mesh) throw std::logic_error(std::string(what) + ": no mesh loaded");
   }
+  // A grab or a stroke starts: its step is recorded when it ends (commit_step).
   void push_undo() {
-    undo.emplace_back(mesh);
-    undo_bytes += undo.back().bytes();
-    redo.clear();
-    while (undo.size() > kMaxUndoSteps || (undo.size() > 1 && undo_bytes > kMaxUndoBytes)) {
-      undo_bytes -= undo.front().bytes();
-      undo.pop_front();
-    }
+    step_touched.clear();
+    step_touched_from = changes.touched_vertices.size();
   }
-  bool garbage_is_large() const {
-    return 8 * (mesh.faces_size() - mesh.n_faces()) > mesh.faces_size() ||
-           8 * (mesh.vertices_size() - mesh.n_vertices()) > mesh.vertices_size();
+  // The step's share of changes.touched_vertices (the viewer may not have read earlier ones yet).
+  void move_step_touched() {
+    const auto& t = changes.touched_vertices;
+    step_touched.insert(step_touched.end(), t.begin() + std::ptrdiff_t(std::min(step_touched_from, t.size())), t.end());
+    step_touched_from = 0;
+  }
+  void commit_step() {
+    move_step_touched();
+    history.commit_local(mesh, step_touched);
+    step_touched.clear();
+    step_touched.shrink_to_fit();
+  }
+  // After load, restore or a whole remesh: the mesh has no deleted slots and the history starts over
+  // (or holds whole-mesh steps only at this point).
+  void new_base() {
+    history.reset(mesh);
+    history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
   }
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
     if (!grabbing && !brushing) return;
     if (grabbing) grab.end();
-    grabbing = brushing = false;
-    remesher.reset();
-    // Deleted slots are compacted once they are an eighth of the faces' or vertices' slots, not
-    // after every stroke: compaction renumbers the whole mesh (linear in its size, and the viewer
-    // uploads every buffer again), which took a seventh of a stroke's time on the 35k-vertex
-    // bunny; every reader skips deleted slots (the render buffers draw them as empty triangles).
-    if (garbage_is_large()) {
-      mesh.garbage_collection();  // renumbers: readers must start over
-      mesh_replaced();
+    if (brushing && options.feature_angle_deg == 0) {
+      remesher->disable_mirror();
+      remesher_kept = true;
+    } else {
+      drop_remesher();
     }
+    grabbing = brushing = false;
+    // The step is recorded from the slots around what it touched (no pass over the mesh). The
+    // mesh is not compacted here: the history refers to slots, and deleted slots stay until a
+    // whole-mesh step (load, restore, remesh) starts the numbering over. Every reader skips them
+    // (the render buffers draw them as empty triangles).
+    commit_step();
     tree_valid = false;
+  }
+  bool step_history(bool back) {
+    end_grab();
+    std::vector<mesh::Vertex> touched;
+    bool whole = false;
+    const bool done = back ? history.undo(mesh, &touched, &whole) : history.redo(mesh, &touched, &whole);
+    if (!done) return false;
+    if (whole) {
+      mesh_replaced();
+    } else {
+      drop_remesher();  // its arrays were not logged: the slots the step brought back hold defaults
+      component_diagonal = 0;
+      tree_valid = false;
+      changes.topology_changed = true;
+      changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
+    }
+    return true;
   }
 };
 
-Session::Session() : impl_(std::make_unique<Impl>()) {}
+Session::Session() : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.brush.set_start_hook([&s](const mesh::SurfaceMesh&, mesh::Vertex seed, bool walked) { s.start_stroke(seed, walked); });
+}
 Session::~Session() = default;
 
 void Session::load(mesh::SurfaceMesh m) {
@@ -218,9 +257,8 @@ void Session::load(mesh::SurfaceMesh m) {
   if (m.has_garbage()) m.garbage_collection();
   s.mesh = std::move(m);
   s.has_mesh = true;
-  s.undo.clear();
-  s.redo.clear();
-  s.undo_bytes = 0;
+  s.new_base();
+  for (bool& r : s.relative) r = true;
   s.options = remesh::default_options_for(s.mesh);
   s.options.adaptive = true;
   s.options.feature_angle_deg = 0;
@@ -250,6 +288,9 @@ void Session::set_settings(const nlohmann::json& j) {
     throw std::invalid_argument("settings: 'min_length' must not exceed 'max_length'");
   remesh::check_options(o);
   s.options = o;
+  const std::optional<LengthSetting>* given[3] = {&p.epsilon, &p.min_length, &p.max_length};
+  for (int i = 0; i < 3; ++i)
+    if (*given[i]) s.relative[i] = (*given[i])->percent;
   if (s.remesher) s.remesher->set_options(o);
 }
 
@@ -307,7 +348,8 @@ void Session::brush_begin(const deform::BrushSettings& settings) {
   s.end_grab();
   s.brush.begin(settings);
   s.push_undo();
-  s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  if (!s.remesher_kept) s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  s.remesher_kept = false;
   s.brushing = true;
 }
 
@@ -366,42 +408,20 @@ void Session::remesh(int iterations) {
   o.iterations = iterations;
   s.remesh_warning = remesh::remesh(s.mesh, o).warning;
   if (s.mesh.has_garbage()) s.mesh.garbage_collection();
+  s.history.commit_whole(s.mesh);
   s.last = FrameTimings{};
   s.last.remesh_ms = s.last.total_ms = ms_since(t0);
   s.mesh_replaced();
 }
 
-bool Session::undo() {
-  Impl& s = *impl_;
-  s.end_grab();
-  if (s.undo.empty()) return false;
-  const size_t bytes = s.undo.back().bytes();
-  mesh::SurfaceMesh m = s.undo.back().take();  // builds a restored step; throws before any change
-  s.undo_bytes -= bytes;
-  s.undo.pop_back();
-  s.redo.emplace_back(std::move(s.mesh));
-  s.mesh = std::move(m);
-  s.mesh.garbage_collection();  // a stroke may have left deleted slots; the buffers start over anyway
-  s.mesh_replaced();
-  return true;
-}
+// Undo and redo swap the step's slots back (exact to the slot, see undo_log.h). A local step
+// reports the vertices it touched, so the renderer updates only those; a whole-mesh step replaces
+// everything.
+bool Session::undo() { return impl_->step_history(true); }
+bool Session::redo() { return impl_->step_history(false); }
 
-bool Session::redo() {
-  Impl& s = *impl_;
-  s.end_grab();
-  if (s.redo.empty()) return false;
-  mesh::SurfaceMesh m = s.redo.back().take();
-  s.redo.pop_back();
-  s.undo.emplace_back(std::move(s.mesh));
-  s.undo_bytes += s.undo.back().bytes();
-  s.mesh = std::move(m);
-  s.mesh.garbage_collection();  // as in undo()
-  s.mesh_replaced();
-  return true;
-}
-
-bool Session::can_undo() const { return !impl_->undo.empty() || impl_->grabbing || impl_->brushing; }
-bool Session::can_redo() const { return !impl_->redo.empty() && !impl_->grabbing && !impl_->brushing; }
+bool Session::can_undo() const { return impl_->history.undo_steps() > 0 || impl_->grabbing || impl_->brushing; }
+bool Session::can_redo() const { return impl_->history.redo_steps() > 0 && !impl_->grabbing && !impl_->brushing; }
 
 nlohmann::json Session::replay(const nlohmann::json& session_file) {
   Impl& s = *impl_;
@@ -482,6 +502,8 @@ const FrameTimings& Session::last_frame() const { return impl_->last; }
 const std::string& Session::remesh_warning() const { return impl_->remesh_warning; }
 const ChangeSet& Session::changes() const { return impl_->changes; }
 void Session::clear_changes() {
+  Impl& s = *impl_;
+  if (s.grabbing || s.brushing) s.move_step_touched();  // the step in progress still needs them when it ends
   impl_->changes.topology_changed = false;
   impl_->changes.everything = false;
   impl_->changes.touched_vertices.clear();
@@ -496,25 +518,26 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
   const Impl& s = *impl_;
   s.require_mesh("save state");
   if (s.grabbing || s.brushing) throw std::logic_error("save state: a grab or a stroke is in progress");
-  static_assert(sizeof(std::array<double, 3>) == 24 && sizeof(std::array<uint32_t, 3>) == 12, "packed arrays");
   const uint32_t probe = 1;
   if (*reinterpret_cast<const uint8_t*>(&probe) != 1) throw std::logic_error("save state: big-endian host");
-  // Newest undo steps first, then the nearest redo steps, while they fit the budget.
+  // Newest undo steps first, then the nearest redo steps, while they fit the budget. Undo steps
+  // apply in order from the newest, so the kept ones are the newest run; likewise for redo.
+  const auto& undo = s.history.undo_list();
+  const auto& redo = s.history.redo_list();
   size_t used = 0, n_undo = 0, n_redo = 0;
-  for (auto it = s.undo.rbegin(); it != s.undo.rend(); ++it, ++n_undo) {
-    const size_t b = it->packed_size();
+  for (auto it = undo.rbegin(); it != undo.rend(); ++it, ++n_undo) {
+    const size_t b = UndoLog::step_serialized_size(**it);
     if (used + b > max_history_bytes) break;
     used += b;
   }
-  if (n_undo == s.undo.size())
-    for (auto it = s.redo.rbegin(); it != s.redo.rend(); ++it, ++n_redo) {
-      const size_t b = it->packed_size();
+  if (n_undo == undo.size())
+    for (auto it = redo.rbegin(); it != redo.rend(); ++it, ++n_redo) {
+      const size_t b = UndoLog::step_serialized_size(**it);
       if (used + b > max_history_bytes) break;
       used += b;
     }
-  const std::vector<uint8_t> current = pack_mesh(s.mesh);
   std::vector<uint8_t> out;
-  out.reserve(64 + current.size() + used);
+  out.reserve(64 + mesh_slots_serialized_size(s.mesh) + used);
   for (char c : kStateMagic) out.push_back(uint8_t(c));  // (vector::insert of the char range trips a g++ 12 false -Wstringop-overflow)
   put(out, kStateVersion);
   for (double x : {s.options.epsilon, s.options.min_length, s.options.max_length, s.options.feature_angle_deg,
@@ -522,13 +545,9 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
     put(out, x);
   put(out, uint32_t(n_undo));
   put(out, uint32_t(n_redo));
-  out.insert(out.end(), current.begin(), current.end());
-  auto append = [&](const Impl::Snapshot& snap) {
-    const std::vector<uint8_t>& b = snap.pack();  // serialized once per step, then cached
-    out.insert(out.end(), b.begin(), b.end());
-  };
-  for (size_t i = s.undo.size() - n_undo; i < s.undo.size(); ++i) append(s.undo[i]);
-  for (size_t i = s.redo.size() - n_redo; i < s.redo.size(); ++i) append(s.redo[i]);
+  write_mesh_slots(s.mesh, out);
+  for (size_t i = undo.size() - n_undo; i < undo.size(); ++i) UndoLog::write_step(*undo[i], out);
+  for (size_t i = redo.size() - n_redo; i < redo.size(); ++i) UndoLog::write_step(*redo[i], out);
   return out;
 }
 
@@ -542,13 +561,12 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   double v[5];
   for (double& x : v) x = r.get<double>();
   const uint32_t n_undo = r.get<uint32_t>(), n_redo = r.get<uint32_t>();
-  if (uint64_t(n_undo) + n_redo > (r.left + 1) / 8) r.fail("truncated history");
-  mesh::SurfaceMesh current = unpack_mesh(r.mesh_bytes());
-  // The steps stay packed until undo/redo needs them (a restore costs one mesh build, not one per step).
-  std::deque<Impl::Snapshot> undo, redo;
-  for (uint32_t i = 0; i < n_undo; ++i) undo.emplace_back(std::make_shared<const std::vector<uint8_t>>(r.mesh_bytes()));
-  while (undo.size() > kMaxUndoSteps) undo.pop_front();
-  for (uint32_t i = 0; i < n_redo; ++i) redo.emplace_back(std::make_shared<const std::vector<uint8_t>>(r.mesh_bytes()));
+  if (uint64_t(n_undo) + n_redo > r.left / 16) r.fail("truncated history");
+  mesh::SurfaceMesh current = read_mesh_slots(r.p, r.left);
+  // Every state the history reaches is built and validated (throws before any change).
+  UndoLog history;
+  history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
+  history.read_history(current, r.p, r.left, n_undo, n_redo);
   if (r.left != 0) r.fail(std::to_string(r.left) + " unexpected bytes at the end");
   remesh::RemeshOptions o = remesh::default_options_for(current);
   o.adaptive = true;
@@ -563,29 +581,28 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   } catch (const std::exception& e) {
     r.fail(e.what());
   }
-  // Everything parsed: commit (moves only).
+  // Everything checked: commit (moves only).
   Impl& s = *impl_;
   s.end_grab();
   s.mesh = std::move(current);
   s.has_mesh = true;
-  s.undo = std::move(undo);
-  s.redo = std::move(redo);
-  s.undo_bytes = 0;
-  for (const auto& m : s.undo) s.undo_bytes += m.bytes();
+  s.history = std::move(history);
   s.options = o;
+  for (bool& rel : s.relative) rel = true;  // the blob holds lengths; the app's settings are percentages
   s.diagonal = v[4];
   s.last = FrameTimings{};
   s.mesh_replaced();
 }
 
-size_t Session::undo_steps() const { return impl_->undo.size(); }
-size_t Session::redo_steps() const { return impl_->redo.size(); }
+size_t Session::undo_steps() const { return impl_->history.undo_steps(); }
+size_t Session::redo_steps() const { return impl_->history.redo_steps(); }
 size_t Session::memory_bytes() const {
   const Impl& s = *impl_;
-  size_t b = s.has_mesh ? mesh_bytes(s.mesh) : 0;
-  b += s.undo_bytes;
-  for (const auto& m : s.redo) b += m.bytes();
-  return b;
+  if (!s.has_mesh) return 0;
+  return s.history.shadow_bytes() * 2 + s.history.history_bytes();  // the mesh is as large as its shadow
 }
+
+void Session::set_history_verification(bool on) { impl_->history.set_verify(on); }
+size_t Session::history_full_diffs() const { return impl_->history.full_diffs(); }
 
 }  // namespace adasculpt::sculpt

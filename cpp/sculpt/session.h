@@ -4,15 +4,15 @@
 // last frame took. The CLI (replay), the wasm bindings and the tests all drive the core through it.
 //
 // Undo model: every grab (grab_begin .. grab_end), every brush stroke (brush_begin .. brush_end)
-// and every whole-mesh remesh() is one undo step.
-// A step snapshots the mesh when it starts (a deep copy of the SurfaceMesh), so undo restores
-// positions bit for bit and the exact connectivity (compacted: undo and redo garbage-collect). The history is bounded
-// (kMaxUndoSteps steps and kMaxUndoBytes bytes of snapshots; the oldest steps are dropped first).
+// and every whole-mesh remesh() is one undo step, recorded in an UndoLog (undo_log.h): a grab or a
+// stroke keeps the bytes of the slots it changed (memory in proportion to the changed region), a
+// whole remesh keeps the mesh before it. Undo and redo are exact to the slot: positions,
+// connectivity, deleted slots and numbering come back bit for bit. The history is bounded
+// (kMaxUndoSteps steps and kMaxUndoBytes bytes; the oldest steps are dropped first).
 //
-// The mesh may contain deleted slots, and readers must skip them (mesh().is_deleted(...)): it is
-// never garbage-collected during a grab or a stroke, and grab_end() and brush_end() compact it only
-// once deleted slots are an eighth of the faces' or vertices' slots (compaction renumbers the whole
-// mesh, and changes() then reports everything).
+// The mesh may contain deleted slots, and readers must skip them (mesh().is_deleted(...)): grabs
+// and strokes never compact it, since the history refers to slots (load, restore_state and a
+// whole remesh() start a compact numbering; changes() then reports everything).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -73,7 +73,11 @@ class Session {
   // Keys: epsilon, min_length, max_length (number = absolute length, or a string "0.05%" =
   // percent of the bounding-box diagonal), features (dihedral angle in degrees, 0 = off).
   // Unknown keys and bad values throw std::invalid_argument naming the field; on error nothing
-  // changes. Keys not given keep their current value.
+  // changes. Keys not given keep their current value. A brush stroke applies the percentages (and
+  // the defaults) to the connected component under the brush: scaled by its bounding-box
+  // diagonal over the scene's (on a mesh of one piece, as given), so that loading more objects
+  // does not coarsen the detail of each; lengths given as numbers stay as given. A stroke's own
+  // `detail` (BrushSettings) replaces them.
   void set_settings(const nlohmann::json& s);
   // {"epsilon":..., "min_length":..., "max_length":..., "features":..., "diagonal":...} (absolute).
   nlohmann::json settings() const;
@@ -129,24 +133,29 @@ class Session {
   void clear_changes();
   std::vector<uint8_t> export_bytes(io::Format f) const;
 
-  // The whole state in one lossless binary blob, for autosave: the current mesh (double
-  // positions, triangles), the settings (absolute, with the diagonal they were made relative to)
-  // and the undo/redo history, newest undo steps first, then the nearest redo steps, as many as
-  // fit in max_history_bytes (serialized size; the current mesh is always included). Snapshots are
-  // stored as indexed triangles (compacted meshes), so positions and faces come back bit for bit
-  // (halfedge numbering may differ). Throws std::logic_error without a mesh or during a grab/stroke.
+  // The whole state in one lossless binary blob, for autosave: the current mesh as its slots
+  // (positions, connectivity, deletion marks), the settings (absolute, with the diagonal they were
+  // made relative to) and the undo/redo history, newest undo steps first, then the nearest redo
+  // steps, as many as fit in max_history_bytes (serialized size; the current mesh is always
+  // included). Everything comes back bit for bit, slot numbering included. Throws
+  // std::logic_error without a mesh or during a grab/stroke.
   static constexpr size_t kDefaultStateHistoryBytes = size_t(96) << 20;
   std::vector<uint8_t> save_state(size_t max_history_bytes = kDefaultStateHistoryBytes) const;
   // Replaces mesh, settings and history with a save_state() blob; all or nothing: a truncated or
-  // corrupt blob throws std::invalid_argument and nothing changes. Ends any grab. The history
-  // steps stay packed until undo()/redo() reaches them (one mesh build per restore, then one per
-  // step used); a step whose triangles do not form a surface throws std::invalid_argument from
-  // that undo()/redo(), which then changes nothing. save_state() caches each step's bytes.
+  // corrupt blob (a mesh or any state the history reaches that is not a valid surface) throws
+  // std::invalid_argument and nothing changes. Ends any grab. Checking the history visits every
+  // state it holds (a swap of the changed slots and a validate() per step).
   void restore_state(const uint8_t* data, size_t size);
-  // Undo and redo steps held, and the rough heap size of the mesh plus its history (bytes).
+  // Undo and redo steps held, and the rough heap size of the mesh, the history's copy of it
+  // (undo_log.h: the shadow) and the history (bytes).
   size_t undo_steps() const;
   size_t redo_steps() const;
   size_t memory_bytes() const;
+  // For tests: compare the history's whole copy of the mesh after every change (O(mesh) each),
+  // and how often a step had to compare the whole mesh to find its changes (0 when every change
+  // stayed near the touched vertices, as strokes and grabs do).
+  void set_history_verification(bool on);
+  size_t history_full_diffs() const;
 
  private:
   struct Impl;

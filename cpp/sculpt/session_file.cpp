@@ -123,7 +123,7 @@ BrushStroke parse_brush(const json& b, const std::string& ctx) {
 deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx,
                                            std::initializer_list<const char*> stroke_keys) {
   if (!b.is_object()) throw std::invalid_argument(ctx + "must be an object");
-  check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert"}, stroke_keys);
+  check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert", "detail"}, stroke_keys);
   for (const char* k : {"tool", "radius"})
     if (!b.contains(k)) fail(ctx, k, "is missing");
   deform::BrushSettings st;
@@ -151,6 +151,12 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
   if (b.contains("invert")) {
     if (!b["invert"].is_boolean()) fail(ctx, "invert", "must be true or false");
     st.invert = b["invert"].get<bool>();
+  }
+  if (b.contains("detail")) {
+    const json& v = b["detail"];
+    if (!v.is_number() || !(v.get<double>() >= 0) || !std::isfinite(v.get<double>()))
+      fail(ctx, "detail", "must be a non-negative length (edge length for this stroke; 0: the session's detail)");
+    st.detail = v.get<double>();
   }
   return st;
 }
@@ -277,6 +283,7 @@ json to_json(const SessionFile& f) {
                       {"spacing", st.spacing},
                       {"symmetry", st.symmetry_axis < 0 ? "none" : kAxes[st.symmetry_axis]},
                       {"invert", st.invert}};
+        if (st.detail > 0) brush["detail"] = st.detail;
         if (!s.brush.pressure.empty()) brush["pressure"] = s.brush.pressure;
         steps.push_back({{"brush", brush}});
         break;

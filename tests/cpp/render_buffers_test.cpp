@@ -12,6 +12,9 @@
 #include "mesh/primitives.h"
 #include "mesh/surface_mesh.h"
 #include "sculpt/render_buffers.h"
+#include "sculpt/session.h"
+
+#include <glm/geometric.hpp>
 
 using namespace adasculpt;
 using namespace adasculpt::mesh;
@@ -226,6 +229,41 @@ TEST(RenderBuffers, RandomEditsAlwaysMatchRebuildAndRangesCoverChanges) {
   }
   m.validate();
   EXPECT_LT(reallocations, 10) << "geometric growth: few reallocations for hundreds of splits";
+}
+
+// Undo and redo of strokes report what they touched (sculpt/undo_log.h), not everything: the
+// incremental updates, arrays shrinking on undo included, match a rebuild every time.
+TEST(RenderBuffers, UndoAndRedoOfStrokesUpdateIncrementally) {
+  sculpt::Session s;
+  s.load(make_icosphere(3));
+  s.set_settings({{"min_length", "1%"}, {"max_length", "1.5%"}});  // finer than the sphere: strokes split
+  RenderBuffers rb;
+  rb.rebuild(s.mesh());
+  s.clear_changes();
+  for (int k = 0; k < 4; ++k) {
+    sculpt::BrushStroke st;
+    st.settings.tool = k % 2 ? deform::BrushTool::Inflate : deform::BrushTool::Draw;
+    st.settings.radius = 0.3;
+    for (int i = 0; i < 5; ++i) st.path.push_back(Point(glm::normalize(Vec3(0.1 * i - 0.2, 0.3 * k - 0.5, 1))));
+    s.brush_stroke(st);
+    rb.update(s.mesh(), s.changes());
+    s.clear_changes();
+  }
+  expect_matches_rebuild(s.mesh(), rb, "after the strokes");
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(s.undo());
+    EXPECT_FALSE(s.changes().everything);
+    rb.update(s.mesh(), s.changes());
+    s.clear_changes();
+    expect_matches_rebuild(s.mesh(), rb, "after an undo");
+  }
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(s.redo());
+    EXPECT_FALSE(s.changes().everything);
+    rb.update(s.mesh(), s.changes());
+    s.clear_changes();
+    expect_matches_rebuild(s.mesh(), rb, "after a redo");
+  }
 }
 
 TEST(RenderBuffers, PendingAccumulatesUntilTaken) {

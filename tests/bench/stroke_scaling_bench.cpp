@@ -1,0 +1,201 @@
+// Strokes that cost their region, not the mesh (issue 18): the same 12 short brush strokes, then
+// 6 undos and 6 redos, on 1, 4 and 16 disjoint copies of the bunny (70k to 1.1M triangles; the
+// strokes always on the first copy). Prints the time beyond loading, the per-stroke cost, the
+// memory one undo step holds (for the 12 strokes and for one 30-stamp stroke), and whether 64
+// 30-stamp undo steps fit in 512 MB on the 16-copy scene (1.1M triangles).
+// The detail settings are the app's defaults (fractions of the diagonal), which a stroke applies to
+// the object under it, so the scenes differ only in how much mesh lies outside the brush.
+// The first stroke of a process also sizes the remesher's per-slot scratch arrays (a one-time
+// cost, reported apart as first_stroke_ms).
+//   build/native/adasculpt_bench --benchmark_filter=StrokeScaling
+// scripts/undo-scaling-doc.sh turns the output into docs/undo-and-scaling.md.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "io/load_mesh.h"
+#include "io/mesh_io.h"
+#include "mesh/build_from_triangles.h"
+#include "mesh/primitives.h"
+#include "remesh/remesher.h"
+#include "sculpt/session.h"
+
+namespace {
+
+using namespace adasculpt;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// The bunny (or an icosphere(6) without the shared meshes), once.
+const io::PolygonSoup& bunny() {
+  static const io::PolygonSoup soup = [] {
+    const std::string path = std::string(ADASCULPT_SHARED_MESHES_DIR) + "/bunny.off";
+    return io::soup_from_mesh(std::filesystem::exists(path) ? io::load_mesh(path) : mesh::make_icosphere(6));
+  }();
+  return soup;
+}
+
+// `copies` disjoint copies of the bunny side by side along x (copy 0 is the original).
+mesh::SurfaceMesh scene(int copies) {
+  const io::PolygonSoup& b = bunny();
+  double lo = 1e300, hi = -1e300;
+  for (const auto& p : b.points) lo = std::min(lo, p[0]), hi = std::max(hi, p[0]);
+  const double shift = 1.5 * (hi - lo);
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<uint32_t, 3>> tris;
+  for (int c = 0; c < copies; ++c) {
+    const uint32_t base = uint32_t(points.size());
+    for (auto p : b.points) {
+      p[0] += c * shift;
+      points.push_back(p);
+    }
+    for (auto t : b.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return mesh::build_from_triangles(points, tris);
+}
+
+double bunny_diagonal() {
+  static const double d = remesh::bounding_box_diagonal(mesh::build_from_triangles(bunny().points, bunny().triangles));
+  return d;
+}
+
+// A path on copy 0: from a vertex, walking to the neighbour furthest along `dir` until `length`
+// has been covered (the walk follows the surface, so every point is on it).
+std::vector<Point> walk_path(const mesh::SurfaceMesh& m, mesh::Vertex v, Vec3 dir, double length) {
+  std::vector<Point> path{m.position(v)};
+  double covered = 0;
+  for (int guard = 0; guard < 1000 && covered < length; ++guard) {
+    mesh::Vertex best;
+    double best_dot = 0;
+    for (mesh::Vertex w : m.vertices(v)) {
+      const double d = glm::dot(m.position(w) - m.position(v), dir);
+      if (d > best_dot) best_dot = d, best = w;
+    }
+    if (!best.is_valid()) break;
+    covered += glm::length(m.position(best) - m.position(v));
+    v = best;
+    path.push_back(m.position(v));
+  }
+  return path;
+}
+
+sculpt::BrushStroke make_stroke(const mesh::SurfaceMesh& m, int k, double stamps) {
+  static const deform::BrushTool tools[] = {deform::BrushTool::Draw, deform::BrushTool::Inflate,
+                                            deform::BrushTool::Smooth, deform::BrushTool::Flatten};
+  sculpt::BrushStroke s;
+  s.settings.tool = tools[k % 4];
+  s.settings.radius = 0.03 * bunny_diagonal();
+  s.settings.strength = 0.5;
+  const Vec3 dirs[] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
+  const mesh::Vertex start(uint32_t((uint64_t(k) * 7919 + 13) % bunny().points.size()));
+  s.path = walk_path(m, start, dirs[k % 6], stamps * s.settings.spacing * s.settings.radius);
+  return s;
+}
+
+// The app's default detail, as fractions of the diagonal: a stroke applies them to the bunny
+// under it (Session::set_settings), whatever the number of copies.
+void set_bunny_detail(sculpt::Session& s) {
+  s.set_settings({{"epsilon", "0.05%"}, {"min_length", "0.2%"}, {"max_length", "5%"}});
+}
+
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+// 12 short strokes (4 stamps' worth of path each), 6 undos, 6 redos; 3 runs on a fresh session.
+void BM_StrokeScaling(benchmark::State& state) {
+  const int copies = int(state.range(0));
+  const mesh::SurfaceMesh m = scene(copies);
+  std::vector<sculpt::BrushStroke> strokes;
+  for (int k = 0; k < 12; ++k) strokes.push_back(make_stroke(m, k, 4));
+  std::vector<double> beyond, stroke_ms, later_stroke_ms, first_stroke_ms, undo_ms, redo_ms, step_bytes;
+  for (auto _ : state) {
+    state.PauseTiming();
+    sculpt::Session s;
+    s.load(m);
+    set_bunny_detail(s);
+    const size_t loaded_bytes = s.memory_bytes();
+    state.ResumeTiming();
+    const auto t0 = Clock::now();
+    for (size_t k = 0; k < strokes.size(); ++k) {
+      const auto t = Clock::now();
+      s.brush_stroke(strokes[k]);
+      stroke_ms.push_back(ms_since(t));
+      (k == 0 ? first_stroke_ms : later_stroke_ms).push_back(stroke_ms.back());
+    }
+    const size_t after_strokes = s.memory_bytes();
+    for (int i = 0; i < 6; ++i) {
+      const auto t = Clock::now();
+      s.undo();
+      undo_ms.push_back(ms_since(t));
+    }
+    for (int i = 0; i < 6; ++i) {
+      const auto t = Clock::now();
+      s.redo();
+      redo_ms.push_back(ms_since(t));
+    }
+    beyond.push_back(ms_since(t0));
+    step_bytes.push_back(double(after_strokes - std::min(after_strokes, loaded_bytes)) / 12);
+  }
+  state.counters["triangles"] = double(m.n_faces());
+  state.counters["beyond_load_ms_median"] = percentile(beyond, 0.5);
+  state.counters["beyond_load_ms_best"] = *std::min_element(beyond.begin(), beyond.end());
+  state.counters["stroke_ms_median"] = percentile(stroke_ms, 0.5);
+  state.counters["stroke_ms_p95"] = percentile(stroke_ms, 0.95);
+  state.counters["stroke_ms_max"] = *std::max_element(stroke_ms.begin(), stroke_ms.end());
+  state.counters["later_stroke_ms_median"] = percentile(later_stroke_ms, 0.5);
+  state.counters["first_stroke_ms_median"] = percentile(first_stroke_ms, 0.5);
+  state.counters["undo_ms_median"] = percentile(undo_ms, 0.5);
+  state.counters["redo_ms_median"] = percentile(redo_ms, 0.5);
+  state.counters["undo_step_MB"] = percentile(step_bytes, 0.5) / (1 << 20);
+  std::printf("stroke-scaling copies=%d triangles=%zu beyond_load_ms median=%.1f best=%.1f stroke_ms median=%.2f "
+              "p95=%.2f max=%.2f later_strokes_ms median=%.2f first_stroke_ms median=%.1f undo_ms=%.2f redo_ms=%.2f "
+              "undo_step_MB=%.3f\n",
+              copies, m.n_faces(), percentile(beyond, 0.5), *std::min_element(beyond.begin(), beyond.end()),
+              percentile(stroke_ms, 0.5), percentile(stroke_ms, 0.95),
+              *std::max_element(stroke_ms.begin(), stroke_ms.end()), percentile(later_stroke_ms, 0.5),
+              percentile(first_stroke_ms, 0.5), percentile(undo_ms, 0.5),
+              percentile(redo_ms, 0.5), percentile(step_bytes, 0.5) / (1 << 20));
+}
+BENCHMARK(BM_StrokeScaling)->Arg(1)->Arg(4)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// One 30-stamp stroke's undo step, and 64 of them on the 16-copy scene (the history budget is
+// Session::kMaxUndoBytes = 512 MB: a step that does not fit drops the oldest).
+void BM_StrokeScalingUndoMemory(benchmark::State& state) {
+  const mesh::SurfaceMesh m = scene(16);
+  std::vector<double> step_mb;
+  size_t steps_kept = 0, total_bytes = 0;
+  for (auto _ : state) {
+    sculpt::Session s;
+    s.load(m);
+    set_bunny_detail(s);
+    for (int k = 0; k < 64; ++k) {
+      const size_t before = s.memory_bytes();
+      s.brush_stroke(make_stroke(m, k, 30));
+      step_mb.push_back(double(s.memory_bytes() - std::min(s.memory_bytes(), before)) / (1 << 20));
+    }
+    steps_kept = s.undo_steps();
+    total_bytes = s.memory_bytes();
+  }
+  state.counters["step_MB_median"] = percentile(step_mb, 0.5);
+  state.counters["step_MB_max"] = percentile(step_mb, 1.0);
+  state.counters["steps_kept_of_64"] = double(steps_kept);
+  state.counters["total_MB"] = double(total_bytes) / (1 << 20);
+  std::printf("stroke-scaling undo-memory triangles=%zu step_MB median=%.3f p95=%.3f max=%.3f steps_kept=%zu/64 "
+              "total_MB=%.1f fits_512MB=%s\n",
+              m.n_faces(), percentile(step_mb, 0.5), percentile(step_mb, 0.95), percentile(step_mb, 1.0), steps_kept,
+              double(total_bytes) / (1 << 20),
+              steps_kept == 64 && total_bytes <= (size_t(512) << 20) ? "yes" : "no");
+}
+BENCHMARK(BM_StrokeScalingUndoMemory)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
