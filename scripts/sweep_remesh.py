@@ -243,13 +243,20 @@ class Sweep:
         self.stats_bin = Path(args.stats_bin).resolve()
         self.cpu_cap, self.mem_cap = args.cpu_cap, args.mem_cap
         self.samples = args.samples
-        self.results = Path(args.results) if args.results else DATA / "sweep" / file_hash(self.bin)
-        self.results.mkdir(parents=True, exist_ok=True)
-        self.probes = DATA / "sweep" / "inputs" / file_hash(self.stats_bin)
-        self.probes.mkdir(parents=True, exist_ok=True)
         self.fresh = args.fresh
         self.tmp = Path(tempfile.mkdtemp(prefix="adasculpt-sweep-"))
         atexit.register(shutil.rmtree, self.tmp, True)
+        # Run private copies, hashed after copying: a binary rebuilt while the sweep runs must neither fail a
+        # run half-written nor mix two remeshers under one result key.
+        self.run_bin = self.tmp / "remesh-bin" / "adasculpt"
+        self.run_stats_bin = self.tmp / "stats-bin" / "adasculpt"
+        for source, copy in ((self.bin, self.run_bin), (self.stats_bin, self.run_stats_bin)):
+            copy.parent.mkdir()
+            shutil.copy2(source, copy)
+        self.results = Path(args.results) if args.results else DATA / "sweep" / file_hash(self.run_bin)
+        self.results.mkdir(parents=True, exist_ok=True)
+        self.probes = DATA / "sweep" / "inputs" / file_hash(self.run_stats_bin)
+        self.probes.mkdir(parents=True, exist_ok=True)
         self.lock = threading.Lock()
 
     def repro(self, mesh, setting):
@@ -262,7 +269,7 @@ class Sweep:
         if key.exists() and not self.fresh:
             return json.loads(key.read_text())
         out, err = self.tmp / f"probe-{os.getpid()}-{threading.get_ident()}.out", self.tmp / f"probe-{threading.get_ident()}.err"
-        status, *_ = run_capped([self.stats_bin, "stats", mesh.path, "--json", "--self-intersections"],
+        status, *_ = run_capped([self.run_stats_bin, "stats", mesh.path, "--json", "--self-intersections"],
                                 120, 8192, 300, out, err)
         info = {"mesh": str(mesh.path)}
         warnings = [l for l in Path(err).read_text(errors="replace").splitlines() if l.strip()]
@@ -299,7 +306,7 @@ class Sweep:
             out_mesh.unlink()
         # The cap is on CPU time, which a loaded machine does not inflate; the wall-clock limit
         # only guards against a process that sleeps or waits forever.
-        status, _, cpu, rss, wall = run_capped([self.bin, "remesh", mesh.path, out_mesh] + setting.args,
+        status, _, cpu, rss, wall = run_capped([self.run_bin, "remesh", mesh.path, out_mesh] + setting.args,
                                                self.cpu_cap, self.mem_cap, 30 * self.cpu_cap + 60, so, se)
         r = {"mesh": mesh.name, "path": str(mesh.path), "setting": setting.name, "status": status,
              "cpu_s": round(cpu, 3), "rss_mb": round(rss, 1), "wall_s": round(wall, 3),
@@ -310,7 +317,7 @@ class Sweep:
             status = r["status"] = "ok+warning"  # e.g. the runaway guard stopped early: still judged by the targets
         if status.startswith("ok"):
             mo, me = self.tmp / f"stats-{tag}.out", self.tmp / f"stats-{tag}.err"
-            st, *_ = run_capped([self.stats_bin, "stats", out_mesh, "--reference", mesh.path, "--json",
+            st, *_ = run_capped([self.run_stats_bin, "stats", out_mesh, "--reference", mesh.path, "--json",
                                  "--self-intersections", "--samples", str(self.samples)], 300, 16384, 900, mo, me)
             if st != "ok":
                 r["status"] = f"MEASURE-{st}"
@@ -322,7 +329,8 @@ class Sweep:
                          output_si=s["self_intersecting_pairs"], si_capped=s["self_intersections_capped"],
                          genus=s["genus"], boundary_loops=s["boundary_loops"])
                 r["new_si"] = r["output_si"] - input_info["si"]
-        key.write_text(json.dumps(r))
+        if not r["status"].startswith("MEASURE"):  # a failed measurement is retried next time
+            key.write_text(json.dumps(r))
         return r
 
 
