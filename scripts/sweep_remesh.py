@@ -526,7 +526,8 @@ def main():
 def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, label, planned):
     git = label or subprocess.run(["git", "-C", str(sweep.bin.parent), "log", "-1", "--format=%h %s"],
                                   stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
-    argv = [a for a in argv if a != "--cached-only"]
+    drop = {"--cached-only", "--label", label}  # options that only shape this page
+    argv = [a for a in argv if a not in drop]
     body = [
         "# Remeshing robustness sweep",
         "",
@@ -540,6 +541,7 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, labe
         "Regenerate:",
         "",
         "```",
+        ("" if sweep.bin == (REPO / "build/native/adasculpt").resolve() else f"ADASCULPT_BIN={sweep.bin} ") +
         "bash scripts/sweep-remesh.sh " + " ".join(argv),
         "```",
         "",
