@@ -541,7 +541,7 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, labe
         "Regenerate:",
         "",
         "```",
-        ("" if sweep.bin == (REPO / "build/native/adasculpt").resolve() else f"ADASCULPT_BIN={sweep.bin} ") +
+        ("" if sweep.bin == (REPO / "build/native/adasculpt").resolve() else "ADASCULPT_BIN=<that binary> ") +
         "bash scripts/sweep-remesh.sh " + " ".join(argv),
         "```",
         "",
@@ -561,7 +561,12 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, labe
         table(results),
         "",
     ]
-    path.write_text("\n".join(body))
+    # Machine-independent paths on the page.
+    text = "\n".join(body)
+    for local, portable in ((str(DATA), "~/.cache/adasculpt"), (str(REPO.parent / "shared"), "../shared"),
+                            (str(sweep.bin), "$ADASCULPT_BIN"), (str(REPO) + "/", "")):
+        text = text.replace(local, portable)
+    path.write_text(text)
 
 
 if __name__ == "__main__":
