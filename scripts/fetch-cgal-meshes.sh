@@ -33,11 +33,11 @@ if [ -z "$deb" ]; then
   say "downloading libcgal-demo with apt-get download into $CACHE/deb"
   # apt-get download writes into the current directory. It needs the package lists; when
   # they are missing, one apt-get update (root only) fetches them.
-  if ! (cd "$CACHE/deb" && apt-get download libcgal-demo >"$work/apt.log" 2>&1); then
+  if ! (cd "$CACHE/deb" && timeout 300 apt-get download libcgal-demo >"$work/apt.log" 2>&1); then
     if [ "$(id -u)" = 0 ] && grep -q "Unable to locate package" "$work/apt.log"; then
       say "package lists missing: running apt-get update"
-      apt-get update >"$work/update.log" 2>&1 || die "apt-get update failed (offline?): $(tail -1 "$work/update.log")"
-      (cd "$CACHE/deb" && apt-get download libcgal-demo >"$work/apt.log" 2>&1) ||
+      timeout 300 apt-get update >"$work/update.log" 2>&1 || die "apt-get update failed (offline?): $(tail -1 "$work/update.log")"
+      (cd "$CACHE/deb" && timeout 300 apt-get download libcgal-demo >"$work/apt.log" 2>&1) ||
         die "apt-get download libcgal-demo failed (offline?): $(tail -1 "$work/apt.log")"
     else
       die "apt-get download libcgal-demo failed (offline?): $(tail -1 "$work/apt.log")"

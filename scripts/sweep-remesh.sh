@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Robustness sweep of the remesher (issue 17): remeshes every closed or bordered manifold mesh of
 # Debian's libcgal-demo (downloaded by scripts/fetch-cgal-meshes.sh into $ADASCULPT_DATA, default
-# ~/.cache/adasculpt; never committed) and of ../shared/meshes at every setting of the issue:
+# ~/.cache/adasculpt; never committed), of ../shared/meshes and three generated hard cases (a coarse fan-
+# triangulated bar, a plate thinner than any target length, a cylinder of 0.2° slivers) at every setting:
 #   adaptive  --epsilon {0.01 0.05 0.2 0.5 1 2 5}% x --min-length {0.02 0.2}% x --features {off 45}  (28)
 #   uniform   --length {0.5 2 8}% x --features {off 45}                                               (6)
 # Each run is capped (10 s CPU, 1 GB address space; a cap hit is reported as TIME / MEM) and measured by
@@ -19,14 +20,18 @@
 #     --list             meshes (with skip reasons) and the run count, nothing run
 #     --sample --check   the fast sample run by ctest (RemeshSweepSample): exit 1 on any hard-target miss
 #     --fresh            ignore cached results;  --results DIR: cache directory;  --no-table: summary only
+#     --cached-only      run nothing, report the cached runs;  --label TEXT: what the binary is, for --doc
 #     --cpu-cap S --mem-cap MB --samples N --no-fetch --worst N   (see --help)
 # Binaries: ADASCULPT_BIN (the remesher swept; default build/native/adasculpt) and ADASCULPT_STATS_BIN
 # (the measuring one, needs `stats --self-intersections`; default build/native/adasculpt of this tree).
 #
 # Resumable: each run's result is cached under $ADASCULPT_DATA/sweep/<hash of ADASCULPT_BIN>/, so an
-# interrupted sweep continues where it stopped and a rebuilt binary starts afresh. The full sweep is about
-# 110 usable meshes x 34 settings (~3,700 runs; --list prints the exact count): hours on 2 cores when the
-# remesher runs away (every capped run costs 10 s); filter with --meshes / --settings for quick looks.
+# interrupted sweep continues where it stopped and a rebuilt binary starts afresh. The full sweep is
+# 146 usable meshes (135 CGAL, 8 shared, 3 generated; 8 CGAL files skipped: polygon soups, non-manifold, no
+# faces) x 34 settings = 4,964 runs (--list prints the exact count). Most meshes are small: ~0.5 s CPU per
+# run and its measurement, so roughly 20-40 min with -j2 on an idle 2-core machine, plus 10 s for every
+# capped run. --sample (49 runs) takes ~20 s CPU when nothing runs away. Filter with --meshes / --settings;
+# --cached-only re-prints (or --doc's) what a sweep still running has finished.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v python3 >/dev/null || { echo "sweep-remesh: python3 is required" >&2; exit 1; }

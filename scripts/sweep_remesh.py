@@ -243,13 +243,20 @@ class Sweep:
         self.stats_bin = Path(args.stats_bin).resolve()
         self.cpu_cap, self.mem_cap = args.cpu_cap, args.mem_cap
         self.samples = args.samples
-        self.results = Path(args.results) if args.results else DATA / "sweep" / file_hash(self.bin)
-        self.results.mkdir(parents=True, exist_ok=True)
-        self.probes = DATA / "sweep" / "inputs" / file_hash(self.stats_bin)
-        self.probes.mkdir(parents=True, exist_ok=True)
         self.fresh = args.fresh
         self.tmp = Path(tempfile.mkdtemp(prefix="adasculpt-sweep-"))
         atexit.register(shutil.rmtree, self.tmp, True)
+        # Run private copies, hashed after copying: a binary rebuilt while the sweep runs must neither fail a
+        # run half-written nor mix two remeshers under one result key.
+        self.run_bin = self.tmp / "remesh-bin" / "adasculpt"
+        self.run_stats_bin = self.tmp / "stats-bin" / "adasculpt"
+        for source, copy in ((self.bin, self.run_bin), (self.stats_bin, self.run_stats_bin)):
+            copy.parent.mkdir()
+            shutil.copy2(source, copy)
+        self.results = Path(args.results) if args.results else DATA / "sweep" / file_hash(self.run_bin)
+        self.results.mkdir(parents=True, exist_ok=True)
+        self.probes = DATA / "sweep" / "inputs" / file_hash(self.run_stats_bin)
+        self.probes.mkdir(parents=True, exist_ok=True)
         self.lock = threading.Lock()
 
     def repro(self, mesh, setting):
@@ -262,7 +269,7 @@ class Sweep:
         if key.exists() and not self.fresh:
             return json.loads(key.read_text())
         out, err = self.tmp / f"probe-{os.getpid()}-{threading.get_ident()}.out", self.tmp / f"probe-{threading.get_ident()}.err"
-        status, *_ = run_capped([self.stats_bin, "stats", mesh.path, "--json", "--self-intersections"],
+        status, *_ = run_capped([self.run_stats_bin, "stats", mesh.path, "--json", "--self-intersections"],
                                 120, 8192, 300, out, err)
         info = {"mesh": str(mesh.path)}
         warnings = [l for l in Path(err).read_text(errors="replace").splitlines() if l.strip()]
@@ -282,8 +289,14 @@ class Sweep:
         key.write_text(json.dumps(info))
         return info
 
+    def result_file(self, mesh, setting):
+        return self.results / f"{mesh.name.replace('/', '__')}__{setting.name}.json"
+
+    def cached(self, mesh, setting):
+        return self.result_file(mesh, setting).exists()
+
     def run(self, mesh, setting, input_info):
-        key = self.results / f"{mesh.name.replace('/', '__')}__{setting.name}.json"
+        key = self.result_file(mesh, setting)
         if key.exists() and not self.fresh:
             return json.loads(key.read_text())
         tag = f"{threading.get_ident()}"
@@ -293,16 +306,18 @@ class Sweep:
             out_mesh.unlink()
         # The cap is on CPU time, which a loaded machine does not inflate; the wall-clock limit
         # only guards against a process that sleeps or waits forever.
-        status, _, cpu, rss, wall = run_capped([self.bin, "remesh", mesh.path, out_mesh] + setting.args,
+        status, _, cpu, rss, wall = run_capped([self.run_bin, "remesh", mesh.path, out_mesh] + setting.args,
                                                self.cpu_cap, self.mem_cap, 30 * self.cpu_cap + 60, so, se)
         r = {"mesh": mesh.name, "path": str(mesh.path), "setting": setting.name, "status": status,
              "cpu_s": round(cpu, 3), "rss_mb": round(rss, 1), "wall_s": round(wall, 3),
              "note": first_line(se), "input_vertices": input_info["vertices"], "input_si": input_info["si"]}
         m = re.search(r"in ([0-9.]+) ms", Path(so).read_text(errors="replace"))
         r["remesh_ms"] = float(m.group(1)) if m else round(wall * 1000, 1)
-        if status == "ok":
+        if status == "ok" and "warning" in Path(se).read_text(errors="replace"):
+            status = r["status"] = "ok+warning"  # e.g. the runaway guard stopped early: still judged by the targets
+        if status.startswith("ok"):
             mo, me = self.tmp / f"stats-{tag}.out", self.tmp / f"stats-{tag}.err"
-            st, *_ = run_capped([self.stats_bin, "stats", out_mesh, "--reference", mesh.path, "--json",
+            st, *_ = run_capped([self.run_stats_bin, "stats", out_mesh, "--reference", mesh.path, "--json",
                                  "--self-intersections", "--samples", str(self.samples)], 300, 16384, 900, mo, me)
             if st != "ok":
                 r["status"] = f"MEASURE-{st}"
@@ -314,7 +329,8 @@ class Sweep:
                          output_si=s["self_intersecting_pairs"], si_capped=s["self_intersections_capped"],
                          genus=s["genus"], boundary_loops=s["boundary_loops"])
                 r["new_si"] = r["output_si"] - input_info["si"]
-        key.write_text(json.dumps(r))
+        if not r["status"].startswith("MEASURE"):  # a failed measurement is retried next time
+            key.write_text(json.dumps(r))
         return r
 
 
@@ -325,7 +341,7 @@ def failures(results, settings_by_name, sweep):
     out = []
     for r in results:
         s = settings_by_name[r["setting"]]
-        if r["status"] != "ok":
+        if not r["status"].startswith("ok"):
             sev = 1e9 if r["status"].startswith(("TIME", "MEM", "CRASH")) else 1e8
             out.append(("cap/crash", sev, r, f"{r['status']} after {r['cpu_s']:.1f} s CPU, {r['rss_mb']:.0f} MB"
                         + (f" — {r['note']}" if r["note"] else "")))
@@ -337,7 +353,7 @@ def failures(results, settings_by_name, sweep):
             out.append(("hausdorff", r["hausdorff_pct"] / s.bound_pct, r,
                         f"Hausdorff {r['hausdorff_pct']:.3g} % > {s.bound_pct:g} %"))
     # Coarser settings must never give more vertices: epsilon and min length (adaptive), length (uniform).
-    done = {(r["mesh"], r["setting"]): r for r in results if r["status"] == "ok"}
+    done = {(r["mesh"], r["setting"]): r for r in results if r["status"].startswith("ok")}
     worst_monotone = {}  # (mesh, coarser setting) -> (ratio, result, text)
     for (mesh, name), r in done.items():
         s = settings_by_name[name]
@@ -382,9 +398,11 @@ def summary(results, fails, skipped, sweep, settings_by_name, limit):
     by_kind = {}
     for kind, _, r, text in fails:
         by_kind.setdefault(kind, []).append((r, text))
-    ok = sum(r["status"] == "ok" for r in results)
-    low_angle = [r for r in results if r["status"] == "ok" and r["min_angle"] < MIN_ANGLE_GOAL]
-    lines.append(f"runs: {n} ({ok} finished under the caps of {sweep.cpu_cap:g} s CPU / {sweep.mem_cap} MB)")
+    ok = sum(r["status"].startswith("ok") for r in results)
+    warned = sum(r["status"] == "ok+warning" for r in results)
+    low_angle = [r for r in results if r["status"].startswith("ok") and r["min_angle"] < MIN_ANGLE_GOAL]
+    lines.append(f"runs: {n} ({ok} finished under the caps of {sweep.cpu_cap:g} s CPU / {sweep.mem_cap} MB, "
+                 f"{warned} of them with a warning)")
     for kind in ("cap/crash", "new crossings", "hausdorff", "monotone"):
         runs = {(r["mesh"], r["setting"]) for r, _ in by_kind.get(kind, [])}
         lines.append(f"  {kind:14s} {len(runs)} runs fail")
@@ -434,6 +452,9 @@ def main():
     ap.add_argument("--fresh", action="store_true", help="ignore cached results")
     ap.add_argument("--no-fetch", action="store_true", help="do not download the CGAL meshes when missing")
     ap.add_argument("--no-table", action="store_true", help="print only the summary")
+    ap.add_argument("--cached-only", action="store_true",
+                    help="run nothing: report the runs already in the result cache (e.g. of a sweep still running)")
+    ap.add_argument("--label", help="what the remesh binary is (commit), for --doc; default: git log of its tree")
     ap.add_argument("--list", action="store_true", help="list meshes (with skip reasons) and the run count, run nothing")
     ap.add_argument("--worst", type=int, default=15, help="failures listed per kind in the summary")
     args = ap.parse_args()
@@ -453,9 +474,10 @@ def main():
         meshes = [m for m in meshes if m.name in SAMPLE_MESHES]
         settings = [s for s in settings if s.name in SAMPLE_SETTINGS]
     else:
-        meshes = meshes_in(cgal_dir(fetch=not args.no_fetch), "cgal") + meshes_in(shared, "shared")
+        meshes = (meshes_in(cgal_dir(fetch=not args.no_fetch), "cgal") + meshes_in(shared, "shared") +
+                  generated_meshes(DATA / "sweep" / "generated"))
         if not shared.is_dir():
-            print(f"sweep: {shared} not found: shared meshes skipped")
+            print(f"sweep: {shared} not found: shared meshes skipped", file=sys.stderr)
     if args.meshes:
         meshes = [m for m in meshes if re.search(args.meshes, m.name)]
     if args.settings:
@@ -467,6 +489,9 @@ def main():
     skipped = [(m.name, infos[m.name]["skip"]) for m in meshes if "skip" in infos[m.name]]
     usable = [m for m in meshes if "skip" not in infos[m.name]]
     runs = [(m, s) for m in usable for s in settings]
+    planned = len(runs)
+    if args.cached_only:
+        runs = [(m, s) for m, s in runs if sweep.cached(m, s)]
     print(f"sweep: {len(usable)} meshes x {len(settings)} settings = {len(runs)} runs "
           f"({len(skipped)} meshes skipped); remesh binary {sweep.bin}, results in {sweep.results}", file=sys.stderr)
     if args.list:
@@ -494,13 +519,15 @@ def main():
     if args.output:
         Path(args.output).write_text(text + "\n")
     if args.doc:
-        write_doc(Path(args.doc), sys.argv[1:], sweep, results, fails, skipped, settings_by_name, len(meshes))
+        write_doc(Path(args.doc), sys.argv[1:], sweep, results, fails, skipped, settings_by_name, args.label, planned)
     return 1 if args.check and fails else 0
 
 
-def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, n_meshes):
-    git = subprocess.run(["git", "-C", str(sweep.bin.parent), "log", "-1", "--format=%h %s"],
-                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, label, planned):
+    git = label or subprocess.run(["git", "-C", str(sweep.bin.parent), "log", "-1", "--format=%h %s"],
+                                  stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+    drop = {"--cached-only", "--label", label}  # options that only shape this page
+    argv = [a for a in argv if a not in drop]
     body = [
         "# Remeshing robustness sweep",
         "",
@@ -514,10 +541,14 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, n_me
         "Regenerate:",
         "",
         "```",
+        ("" if sweep.bin == (REPO / "build/native/adasculpt").resolve() else "ADASCULPT_BIN=<that binary> ") +
         "bash scripts/sweep-remesh.sh " + " ".join(argv),
         "```",
         "",
         f"Remesh binary: `{sweep.bin}` ({git or 'unknown commit'}), generated {time.strftime('%Y-%m-%d %H:%M %Z')}.",
+        "" if len(results) == planned else
+        f"This page covers {len(results)} of the {planned} runs of that command (the others were not run yet; the "
+        "sweep is resumable: the same command continues it).",
         "",
         "## Summary",
         "",
@@ -530,7 +561,12 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, n_me
         table(results),
         "",
     ]
-    path.write_text("\n".join(body))
+    # Machine-independent paths on the page.
+    text = "\n".join(body)
+    for local, portable in ((str(DATA), "~/.cache/adasculpt"), (str(REPO.parent / "shared"), "../shared"),
+                            (str(sweep.bin), "$ADASCULPT_BIN"), (str(REPO) + "/", "")):
+        text = text.replace(local, portable)
+    path.write_text(text)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 // `adasculpt stats MESH [--reference REF] [--json] [--samples N] [--self-intersections [--si-cap N]]`:
 // the quality report of a mesh, with a reference its distance to it, and on request the
 // number of self-intersecting face pairs.
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -91,6 +92,19 @@ void run_stats(const StatsOptions& o) {
     out["self_intersecting_pairs"] = si->pairs.size();
     out["self_intersections_capped"] = si->capped;
     out["collinear_faces"] = si->degenerate_faces;
+    // Where to look: the centroids of the first few crossing pairs' faces.
+    nlohmann::json examples = nlohmann::json::array();
+    for (size_t i = 0; i < si->pairs.size() && i < 10; ++i) {
+      nlohmann::json pair = nlohmann::json::array();
+      for (std::uint32_t f : {si->pairs[i].first, si->pairs[i].second}) {
+        mesh::Vertex v[3];
+        m.face_vertices(mesh::Face(f), v);
+        const Point c = (m.position(v[0]) + m.position(v[1]) + m.position(v[2])) / 3.0;
+        pair.push_back({{"face", f}, {"centroid", {c.x, c.y, c.z}}});
+      }
+      examples.push_back(pair);
+    }
+    out["self_intersection_examples"] = examples;
   }
   print_json(out);
 }

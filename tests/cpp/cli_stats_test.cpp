@@ -117,6 +117,8 @@ TEST(CliStats, SelfIntersections) {
   nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["self_intersecting_pairs"], 1);
   EXPECT_EQ(j["self_intersections_capped"], false);
+  ASSERT_EQ(j["self_intersection_examples"].size(), 1u);  // where to look: both faces' centroids
+  EXPECT_NEAR(j["self_intersection_examples"][0][1]["centroid"][2].get<double>(), 0.0, 1e-12);
   r = run({"stats", data("meshes/eight.off"), "--self-intersections"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("self-intersecting pairs    0"), std::string::npos) << r.out;
