@@ -1,7 +1,7 @@
 // The control panel (lil-gui): remeshing settings, grab radii, brush settings, display, whole-mesh remesh with
 // progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
 import GUI from 'lil-gui';
-import { SYMMETRY } from './brush-tool.js';
+import { SYMMETRY } from './settings.js';
 
 export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
 
