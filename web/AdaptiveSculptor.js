@@ -434,11 +434,11 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
   // The Pull tool's preview without a host shader: rings at the region and handle radii, facing
   // the camera, at the handle.
   _showGrab({ center, handleRadius, roiRadius, visible }) {
-    if (!this._grabCursor) this._grabCursor = new BrushCursor(this.mesh, this._view.changed);
     if (!visible || !center) {
-      this._grabCursor.show(null);
+      if (this._grabCursor) this._grabCursor.show(null);
       return;
     }
+    if (!this._grabCursor) this._grabCursor = new BrushCursor(this.mesh, this._view.changed);
     const facing = this._viewDirection().negate();
     this._grabCursor.show(center, facing, roiRadius, handleRadius / roiRadius, false);
   }

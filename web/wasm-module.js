@@ -20,11 +20,20 @@ function loadFactory(scriptUrl) {
       const existing = document.querySelector('script[data-adasculpt-wasm]');
       const script = existing || document.createElement('script');
       const done = () => {
+        forget();
         if (typeof globalThis.createAdasculptModule === 'function') resolve(globalThis.createAdasculptModule);
         else reject(new Error(`${script.src} did not define createAdasculptModule`));
       };
-      script.addEventListener('load', done, { once: true });
-      script.addEventListener('error', () => reject(new Error(`could not load ${script.src}`)), { once: true });
+      const failed = () => {
+        forget();
+        reject(new Error(`could not load ${script.src}`));
+      };
+      const forget = () => {
+        script.removeEventListener('load', done);
+        script.removeEventListener('error', failed);
+      };
+      script.addEventListener('load', done);
+      script.addEventListener('error', failed);
       if (!existing) {
         script.src = scriptUrl;
         script.async = true;
