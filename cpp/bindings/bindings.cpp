@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -176,7 +177,11 @@ nlohmann::json from_js(const val& v, bool snake, int depth = 0) {
   const std::string type = v.typeOf().as<std::string>();
   if (type == "undefined" || v.isNull()) return nullptr;
   if (type == "boolean") return v.as<bool>();
-  if (type == "number") return v.as<double>();
+  if (type == "number") {  // integral numbers stay integers (a session file's "version": 1, counts)
+    const double d = v.as<double>();
+    if (std::floor(d) == d && std::fabs(d) < 9e15) return static_cast<std::int64_t>(d);
+    return d;
+  }
   if (type == "string") return v.as<std::string>();
   if (type != "object") throw std::invalid_argument("expected plain values, got a " + type);
   if (val::global("Array").call<bool>("isArray", v)) {

@@ -84,6 +84,30 @@ test('settings round-trip, absolute and percent', { skip }, () => {
   });
 });
 
+// One convention: plain objects with camelCase keys in and out, no JSON strings; a session file
+// replays the same from its text or its object (integral numbers stay integers on the way in).
+test('plain objects in and out: defaults, settings, stats, replay from an object or its text', { skip }, () => {
+  assert.deepStrictEqual(M.defaultSettings(), { epsilon: '0.05%', minLength: '0.2%', maxLength: '5%', features: 0 });
+  const fromObject = withSession((s) => {
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    const st = s.settings();
+    assert.deepStrictEqual(Object.keys(st).sort(), ['diagonal', 'epsilon', 'features', 'maxLength', 'minLength']);
+    assert.ok(Math.abs(st.epsilon - 0.0005 * st.diagonal) < 1e-12, 'the default epsilon is 0.05 % of the diagonal');
+    const q = s.stats();
+    for (const k of ['minAngleDeg', 'meanMinAngleDeg', 'valenceHistogram', 'lastFrame', 'canUndo']) assert.ok(k in q, k);
+    assert.ok(!Object.keys(q).some((k) => k.includes('_')), 'no snake_case keys');
+    assert.throws(() => s.replay({ version: 2, steps: [] }), /'version' must be 1/);
+    return s.replay(PULL);
+  });
+  const fromText = withSession((s) => {
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    return s.replay(JSON.stringify(PULL));
+  });
+  assert.ok(fromObject.frames > 0 && Number.isFinite(fromObject.frameMsMedian));
+  assert.strictEqual(fromObject.vertices, fromText.vertices);
+  assert.strictEqual(fromObject.minAngleDeg, fromText.minAngleDeg);
+});
+
 test('remesh, grab/drag/end, undo and redo restore exact states', { skip }, () => {
   withSession((s) => {
     s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
