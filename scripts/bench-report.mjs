@@ -86,7 +86,8 @@ const body = [
   '',
 ];
 for (const s of sections) {
-  const lines = s.lines.filter((l) => !/^npm (warn|notice)/.test(l));
+  // npm's noise and progress lines ("  bunny draw done") are left out.
+  const lines = s.lines.filter((l) => !/^npm (warn|notice)/.test(l) && !/^\s+\S.* done$/.test(l));
   if (!lines.some((l) => l.trim())) continue;
   if (s.title === 'setup') continue; // the build's own output
   body.push(`## \`${s.title}\``, '');
