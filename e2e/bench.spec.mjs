@@ -63,7 +63,7 @@ test('pull on a 100k model: frame medians', async ({ page }) => {
     await window.app.load(bytes.buffer, name.split('.').pop());
   }, [b64, path.basename(mesh)]);
   const wasm = await page.evaluate((s) => window.app.replay(s), session);
-  console.log(`replay in the browser (wasm): ${wasm.frames} frames, median ${wasm.frame_ms_median.toFixed(2)} ms, p95 ${wasm.frame_ms_p95.toFixed(2)} ms`);
+  console.log(`replay in the browser (wasm): ${wasm.frames} frames, median ${wasm.frameMsMedian.toFixed(2)} ms, p95 ${wasm.frameMsP95.toFixed(2)} ms`);
   const cli = [process.env.ADASCULPT_BUILD_ROOT, 'build'].filter(Boolean)
     .map((r) => path.resolve(root, r, 'native', 'adasculpt')).find((p) => fs.existsSync(p));
   if (cli) {
@@ -72,7 +72,7 @@ test('pull on a 100k model: frame medians', async ({ page }) => {
     const native = JSON.parse(execFileSync(cli, ['replay', mesh, path.join(dir, 's.json'), path.join(dir, 'o.off'), '--json'], { encoding: 'utf8' }));
     fs.rmSync(dir, { recursive: true, force: true });
     console.log(`replay native (${path.relative(root, cli)}): median ${native.frame_ms_median.toFixed(2)} ms, p95 ${native.frame_ms_p95.toFixed(2)} ms; ` +
-      `wasm/native ${(wasm.frame_ms_median / native.frame_ms_median).toFixed(2)}x`);
+      `wasm/native ${(wasm.frameMsMedian / native.frame_ms_median).toFixed(2)}x`);
   } else {
     console.log('no native build/native/adasculpt: native column skipped');
   }

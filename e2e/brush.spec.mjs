@@ -84,7 +84,7 @@ test('the palette: keys 1-8 and the buttons pick tools; brush defaults, symmetry
   await open(page);
   expect(await page.evaluate(() => window.app.tool)).toBe('pull');
   await expect(pressed(page)).toHaveText(/Pull/);
-  const expected = ['pull', 'draw', 'inflate', 'smooth', 'flatten', 'pinch', 'crease', 'grab'];
+  const expected = ['pull', 'draw', 'inflate', 'smooth', 'flatten', 'pinch', 'crease', 'snakeHook'];
   for (let i = 8; i >= 1; i--) {
     await page.keyboard.press(String(i));
     expect(await page.evaluate(() => window.app.tool)).toBe(expected[i - 1]);
@@ -139,7 +139,7 @@ test('inflate (key 3) by mouse: more vertices, larger volume; Ctrl+Z restores th
   const undone = await stats(page);
   for (const k of ['vertices', 'faces', 'minAngle', 'meanMinAngle', 'canUndo']) expect(undone[k], k).toEqual(before[k]);
   // The whole quality report too, but for the history flags and the last frame's timings.
-  const report = ({ can_undo: _u, can_redo: _r, last_frame: _f, ...q }) => q;
+  const report = ({ canUndo: _u, canRedo: _r, lastFrame: _f, ...q }) => q;
   expect(report(undone.quality)).toEqual(report(before.quality));
   expect(await sameAs(page, 'start')).toBe(true);
   expect(errors).toEqual([]);

@@ -9,6 +9,7 @@ bash scripts/build.sh native wasm
 npx vite build --logLevel warn
 echo
 echo "adasculpt is being served at http://127.0.0.1:${PORT}/   (Ctrl-C to stop)"
+echo "  examples: http://127.0.0.1:${PORT}/addon.html (AdaptiveSculptor in a three.js scene), /embed.html, /element.html"
 echo
 # Same as `npx vite preview ...`, but exec'ing vite itself means a SIGTERM to this script's pid stops the server
 # (through npx, killing the npm process leaves vite running as an orphan).

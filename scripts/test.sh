@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The whole test pipeline (what `npm test` and CI run):
 #   setup → native build → ctest → ASan build → ctest under ASan/UBSan → fuzzers (scripts/fuzz.sh) → wasm build
-#   → node --test tests/js/ → vite build → playwright (headless Debian Chromium)
+#   → node --test tests/js/ → tsc on the declarations (tests/types) → vite build → playwright (headless Debian
+#   Chromium; e2e/addon-host.spec.mjs also packs the npm package and builds a host project with it)
 # Prints one "[stage] name: N s" line per stage and a summary; any failure stops the run with a non-zero exit.
 # Environment:
-#   ADASCULPT_SKIP="asan e2e"   stages to skip (names: native asan fuzz wasm js web e2e); for quick local runs only
+#   ADASCULPT_SKIP="asan e2e"   stages to skip (names: native asan fuzz wasm js types web e2e); for quick local runs only
 #   ADASCULPT_ASAN_FILTER=REGEX  only the ctest tests matching REGEX under ASan (default: all)
 #   ADASCULPT_CTEST_ARGS="..."   extra ctest arguments for both ctest runs (e.g. "-R Remesh")
 #   ADASCULPT_BUILD_ROOT=DIR     private build dirs (default build), ADASCULPT_PUBLISH_WASM=OFF, ADASCULPT_E2E_PORT:
@@ -83,6 +84,11 @@ fi
 if skipped js; then note node-test "ADASCULPT_SKIP"
 elif ! has_files tests/js -name '*.test.js' -o -name '*.test.cjs' -o -name '*.test.mjs'; then note node-test "no tests/js/*.test.*"
 else stage node-test node --test tests/js/
+fi
+
+# The hand-written TypeScript declarations (web/*.d.ts, the JS API's reference) against an example host.
+if skipped types; then note types "ADASCULPT_SKIP"
+else stage types npx tsc -p tests/types
 fi
 
 if skipped web; then note vite-build "ADASCULPT_SKIP"

@@ -1,27 +1,290 @@
-// Type declarations for `import { createSculptApp } from 'adasculpt'` (web/app.js), hand-written.
-// The custom element (`import 'adasculpt/element'`) is declared in viewer-element.d.ts.
+// The JavaScript API of adasculpt, declared and documented in this one file (hand-written; checked
+// by `tsc --noEmit` on tests/types/example.ts in `npm test`).
+//
+//   import { AdaptiveSculptor, createSculptApp } from 'adasculpt';   // web/index.js
+//   import 'adasculpt/element';                                       // <adasculpt-viewer>, viewer-element.d.ts
+//
+// Conventions, everywhere: plain objects with camelCase keys in and out; a length is a number
+// (absolute, in the mesh's own units) or a string "x%" (percent of the mesh's bounding-box
+// diagonal); errors are thrown `Error`s whose message names the field. Session files
+// (`replay`) are the file format the CLI reads, with its snake_case keys.
+import type { Camera, EventDispatcher, Mesh, BufferGeometry, Vector3 } from 'three';
 
 /** A 3-vector: `[x, y, z]` or anything with numeric x, y, z (e.g. a THREE.Vector3). */
 export type Vec3 = [number, number, number] | { x: number; y: number; z: number };
 
-/** A length: a number is absolute (model units), a string `"0.05%"` is percent of the bounding-box diagonal. */
+/** A number is absolute (the mesh's own units), a string `"0.05%"` is percent of the bounding-box diagonal. */
 export type Length = number | `${number}%`;
 
 export type MeshFormat = 'obj' | 'stl' | 'ply' | 'off';
+
+/** The core's brushes. `'snakeHook'` drags the surface under the press along (its old name `'grab'` is still read in session files). */
+export type BrushToolName = 'draw' | 'inflate' | 'smooth' | 'flatten' | 'pinch' | 'crease' | 'snakeHook';
+/** What the pointer drives: `'pull'` is the paper's handle grab (`grab.begin/drag/end`), the others are brushes. */
+export type ToolName = 'pull' | BrushToolName;
+
+/** Mirror strokes across the plane x, y or z = 0 of the mesh's own coordinates; `'off'` (or `'none'`) for none. */
+export type Symmetry = 'x' | 'y' | 'z' | 'off' | 'none';
+
+/** Remeshing settings (the method's parameters). */
+export interface RemeshParams {
+  /** Approximation tolerance ε: the sizing field is L = sqrt(6ε/κ − 3ε²). Default `"0.05%"`. */
+  epsilon?: Length;
+  /** Shortest and longest target edge. Defaults `"0.2%"`, `"5%"`. */
+  minLength?: Length;
+  maxLength?: Length;
+  /** Feature-edge dihedral angle in degrees; 0 = off (default). */
+  features?: number;
+}
+
+/** The tools' settings. Defaults: `tool 'draw'` (the app: `'pull'`), radius `"5%"`, strength 0.5, symmetry `'x'`, handle `"4%"`, region `"15%"`. */
+export interface ToolParams {
+  tool?: ToolName;
+  /** The brushes' radius. */
+  radius?: Length;
+  /** 0..1; a pen's pressure multiplies it. */
+  strength?: number;
+  symmetry?: Symmetry;
+  /** The Pull tool's handle and region-of-interest radii (geodesic). */
+  handleRadius?: Length;
+  roiRadius?: Length;
+}
+
+/** The core's remeshing settings, absolute lengths. */
+export interface CoreSettings {
+  epsilon: number;
+  minLength: number;
+  maxLength: number;
+  features: number;
+  /** Bounding-box diagonal of the mesh as loaded (what "x%" lengths are relative to). */
+  diagonal: number;
+}
+
+/** Everything adjustable, lengths absolute. Remeshing settings are `null` without a mesh. */
+export interface SculptorParams {
+  epsilon: number | null;
+  minLength: number | null;
+  maxLength: number | null;
+  features: number | null;
+  diagonal: number;
+  tool: ToolName;
+  radius: number;
+  strength: number;
+  symmetry: 'x' | 'y' | 'z' | 'off';
+  handleRadius: number;
+  roiRadius: number;
+  /** The tool lengths in percent of the diagonal (they keep their share when another mesh is loaded). */
+  percent: { radius: number; handleRadius: number; roiRadius: number };
+}
+
+/** Milliseconds of one frame in the core (`stamps`: brush stamps run in it; 0 for grab frames). */
+export interface FrameTimings {
+  roi: number; field: number; refine: number; deform: number; remesh: number; total: number;
+  /** Render-buffer update in wasm after the core's work. */
+  buffers: number;
+  stamps: number;
+}
+
+/** A whole stroke's figures (`end` event): frames with a core call, core + buffer ms per frame. */
+export interface StrokeTimings {
+  frames: number;
+  stamps: number;
+  /** Wall time from the press (or `begin`) to the end. */
+  durationMs: number;
+  /** Sum over the frames of core + render-buffer ms. */
+  coreMs: number;
+  medianFrameMs: number;
+  p95FrameMs: number;
+  maxFrameMs: number;
+}
+
+export interface MeshCounts { vertices: number; faces: number }
+
+/** One frame of a stroke: the mesh's size and the frame's timings. */
+export interface FrameResult extends MeshCounts { timings: FrameTimings }
+
+/** The events of `AdaptiveSculptor` and of the app (`start`, `change`, `end`). */
+export interface SculptorEventMap {
+  /** A stroke (grab or brush, by pointer or API) began. */
+  start: { tool: ToolName };
+  /**
+   * Something to draw changed: after each stroke frame, undo, redo, load or remesh (with the mesh's
+   * size, the core's timings and the copy into the geometry), or only the cursor (no fields).
+   */
+  change: Partial<FrameResult> & { copyMs?: number };
+  /** A stroke ended: one undo step. */
+  end: MeshCounts & { tool: ToolName; timings: StrokeTimings };
+  /** The current tool changed (`setTool`, the app's keys 1–8). */
+  tool: { tool: ToolName };
+  /** Tool settings changed (`setParams`, or the keys `[ ] { } - =`). */
+  params: {};
+  /** A pointer-driven action failed (without a listener, the error goes to console.error). */
+  error: { error: Error };
+  dispose: {};
+}
+
+export interface GrabBegin {
+  /** Snapped to the closest surface point (the mesh's own coordinates). */
+  center: Vec3;
+  /** Absolute lengths; default: the current `handleRadius`/`roiRadius`. */
+  handleRadius?: number;
+  roiRadius?: number;
+}
+
+/** The total transform since `grab.begin` (not an increment). */
+export interface GrabTransform {
+  translate?: Vec3;
+  rotate?: { axis: Vec3; degrees: number };
+  scale?: number;
+}
+
+/** Brush settings; the missing ones are the current ones (`setParams`). */
+export interface BrushSettings {
+  /** Default: the current tool when it is a brush, else `'draw'`. */
+  tool?: BrushToolName;
+  /** Absolute length. */
+  radius?: number;
+  strength?: number;
+  symmetry?: Symmetry;
+  /** Draw/inflate/crease inwards, flatten/pinch push away. */
+  invert?: boolean;
+  /** A stamp every `spacing` × radius of travel (0.05..4, default 0.25). */
+  spacing?: number;
+}
+
+export interface BrushStroke extends BrushSettings {
+  /** Surface points along the stroke (for the snake hook: the pointer positions in space). */
+  path: Vec3[];
+  /** One value in 0..1 per path point; default 1. */
+  pressure?: number[];
+}
+
+/** Programmatic handle grabs (the Pull tool's path), each `begin`..`end` one undo step. */
+export interface GrabApi {
+  begin(args: GrabBegin): void;
+  /** One frame: deform, refine, remesh the region. */
+  drag(transform: GrabTransform): FrameResult;
+  end(): void;
+}
+
+/**
+ * Programmatic brush strokes with dynamic topology, each one undo step. `stroke` runs a whole stroke
+ * (the same as a session file's brush step); `begin`/`stamp`/`end` are the per-frame path the pointer
+ * uses: `stamp` takes a frame's samples as `[x, y, z, pressure, ...]` in one wasm call.
+ */
+export interface BrushApi {
+  stroke(stroke: BrushStroke): FrameResult;
+  begin(settings?: BrushSettings): void;
+  stamp(samples: ArrayLike<number>): FrameResult;
+  end(): void;
+}
+
+/** The same object as `adasculpt replay --json` prints, keys in camelCase (frames, frameMsMedian, frameMsP95, vertices, minAngleDeg, ...). */
+export type ReplayReport = Record<string, unknown>;
+
+/** A session file: `{"version": 1, "settings": {...}, "steps": [{"grab": ...}, {"brush": ...}, {"remesh": ...}, {"undo": n}, {"redo": n}]}` (cpp/sculpt/session_file.h). */
+export type SessionFile = string | { version: 1; settings?: Record<string, unknown>; steps: Record<string, unknown>[] };
+
+export interface SculptorOptions extends RemeshParams, ToolParams {
+  /**
+   * URL of the WebAssembly loader `adasculpt.js` (adasculpt.wasm next to it). Default: the package's
+   * own copy, found with `new URL(..., import.meta.url)` (bundlers copy both files into the build).
+   */
+  wasmUrl?: string;
+  /** Where keyboard shortcuts are heard (`[ ]` radius, `- =` strength, R/S/G during a pull); default none. */
+  keyTarget?: EventTarget | null;
+  /** The host's OrbitControls (or anything with `enabled`): disabled while a stroke runs. */
+  controls?: { enabled: boolean } | null;
+  /** Also keep a wireframe index geometry (`buffers.lines`). */
+  wireframe?: boolean;
+  /** Draw the Pull tool's handle/region preview yourself (default: rings on the surface). */
+  grabPreview?: (preview: { center?: Vector3; handleRadius: number; roiRadius: number; visible: boolean }) => void;
+  /** An Emscripten module instance to use instead of creating one (advanced). */
+  module?: AdasculptModule;
+}
+
+/**
+ * Sculpts the host's own `THREE.Mesh` with adaptive remeshing under every stroke. The mesh's
+ * BufferGeometry is changed in place (same object; position, normal and index attributes of the
+ * core's capacity, uploaded by dirty ranges; other attributes such as uv are removed, since the
+ * vertices change). Pointer rays go through `mesh.matrixWorld`: lengths are in the geometry's units.
+ * It never renders: listen to `change`, or render every frame.
+ *
+ * A press on the mesh strokes with the current tool (Ctrl or Alt held: inverted); a press elsewhere
+ * is left to the host (e.g. OrbitControls on the same element). Pointer capture keeps a stroke
+ * going outside the element.
+ */
+export declare class AdaptiveSculptor extends EventDispatcher<SculptorEventMap> {
+  /** Loads the wasm module (see `wasmUrl`), welds the mesh's triangles by position and takes them over. */
+  static create(mesh: Mesh, camera: Camera, options?: SculptorOptions): Promise<AdaptiveSculptor>;
+
+  readonly mesh: Mesh;
+  camera: Camera;
+  /** The element given to `connect`, or null. */
+  readonly domElement: HTMLElement | null;
+  /** False: `update()` does nothing (pointer samples wait). */
+  enabled: boolean;
+  readonly tool: ToolName;
+  /** Absolute lengths. */
+  readonly radius: number;
+  readonly handleRadius: number;
+  readonly roiRadius: number;
+  readonly strength: number;
+  readonly symmetry: 'x' | 'y' | 'z' | 'off';
+  /** Bounding-box diagonal of the mesh as loaded. */
+  readonly diagonal: number;
+  /** A whole-mesh remesh is running. */
+  readonly busy: boolean;
+  readonly params: SculptorParams;
+  /** The embind session (advanced; deleted by `dispose`). */
+  readonly session: Session;
+  readonly module: AdasculptModule | null;
+  /** Programmatic strokes; they dispatch `start`/`change`/`end` like the pointer's. */
+  readonly grab: GrabApi;
+  readonly brush: BrushApi;
+
+  /** Listens to pointer events (and wheel) on the element until `disconnect()`. */
+  connect(domElement: HTMLElement): void;
+  disconnect(): void;
+  /** False (nothing changes) while a stroke runs; throws on an unknown name. */
+  setTool(name: ToolName): boolean;
+  /** Checks every value first, then applies them; throws on an unknown key or a bad value. */
+  setParams(params: RemeshParams & ToolParams): SculptorParams;
+  /** Replaces the surface by this geometry's triangles (welded by position); history and settings start afresh. */
+  loadGeometry(geometry: BufferGeometry): void;
+  /** Replaces the surface by a mesh file (OBJ, STL, PLY, OFF; `name`'s extension gives the format). */
+  loadBytes(bytes: Uint8Array | ArrayBuffer, name: string): void;
+  /** Re-reads the whole surface from `session` (after calling its methods directly). */
+  resync(): void;
+  /** Whole strokes; false when there is nothing to undo/redo or a stroke runs. */
+  undo(): boolean;
+  redo(): boolean;
+  /**
+   * Whole-mesh adaptive remeshing with projection onto the current surface. Without `onProgress`: one
+   * core call of `iterations` (default 5), one undo step, the CLI's `remesh --iterations` result.
+   * With `onProgress`: one iteration per animation frame, each reported and each one undo step.
+   */
+  remesh(options?: { iterations?: number; onProgress?: (p: { done: number; total: number }) => void }): Promise<MeshCounts>;
+  /** Runs a session file on the current mesh. */
+  replay(file: SessionFile): ReplayReport;
+  /** Sends the pointer samples queued since the last frame to the core now (it also schedules itself). */
+  update(): void;
+  /** Frees the wasm instance, the cursor (geometry, materials) and every listener; the mesh keeps the sculpted geometry. Idempotent. */
+  dispose(): void;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The app
 
 /** What `load` accepts: a URL (fetched), a File/Blob, or the file's bytes. */
 export type MeshSource = string | URL | Blob | ArrayBuffer | ArrayBufferView;
 
 export interface SculptAppOptions {
-  /** URL of the first model; `null` for none. Default: the bundled sphere (`models/sphere.obj`). */
+  /** URL of the first model; `null` for none. Default: the bundled sphere (`models/sphere.obj`, relative to the page). */
   model?: string | null;
-  /**
-   * URL of the WebAssembly loader script `adasculpt.js` (adasculpt.wasm must sit next to it).
-   * Default: `wasm/adasculpt.js` relative to the page (`document.baseURI`). The script is injected
-   * once per page; every app gets its own module instance (own wasm memory).
-   */
+  /** As `SculptorOptions.wasmUrl`. */
   wasmUrl?: string;
-  /** Panel, stats overlay and help line. Default `true`. */
+  /** Panel, tool palette, stats overlay and help line. Default `true`. */
   ui?: boolean;
   /** `'global'`: keyboard shortcuts on `window`; default `'focus'`: only while the app has the focus. */
   keyboard?: 'global' | 'focus';
@@ -56,7 +319,6 @@ export interface Autosave {
   readonly lastError: string | null;
   /** Writes now if something changed since the last write; true when written. */
   flush(): Promise<boolean>;
-  /** What is saved, or null. */
   saved(): Promise<AutosaveInfo | null>;
   /** Loads the saved mesh, settings and undo/redo history; null when nothing is saved. Rejects on a damaged record (the mesh stays). */
   restore(): Promise<Omit<AutosaveInfo, 'key' | 'bytes'> | null>;
@@ -64,80 +326,10 @@ export interface Autosave {
   clear(): Promise<void>;
 }
 
-export interface SculptParams {
-  /** Approximation tolerance (the method's one parameter). */
-  epsilon?: Length;
-  minLength?: Length;
-  maxLength?: Length;
-  /** Feature-edge dihedral angle in degrees; 0 = off. */
-  features?: number;
-  /** Default grab radii (geodesic) for mouse grabs and `grab.begin` without radii. */
-  handleRadius?: Length;
-  roiRadius?: Length;
-  /** The brushes' radius, strength (0..1) and mirror symmetry (the panel's Brush folder; `brush.*` defaults). */
+/** `setParams` of the app: the sculptor's, plus the older names `brushRadius`/`brushStrength` of `radius`/`strength`. */
+export interface SculptParams extends RemeshParams, Omit<ToolParams, 'tool'> {
   brushRadius?: Length;
   brushStrength?: number;
-  symmetry?: 'x' | 'y' | 'z' | 'off' | 'none';
-}
-
-/** The core's settings, absolute lengths. */
-export interface CoreSettings {
-  epsilon: number;
-  min_length: number;
-  max_length: number;
-  features: number;
-  diagonal: number;
-}
-
-export interface GrabBegin {
-  /** Snapped to the closest surface point. */
-  center: Vec3;
-  /** Absolute lengths; default: the panel's radii. */
-  handleRadius?: number;
-  roiRadius?: number;
-}
-
-/** The total transform since `grab.begin` (not an increment). */
-export interface GrabTransform {
-  translate?: Vec3;
-  rotate?: { axis: Vec3; degrees: number };
-  scale?: number;
-}
-
-export interface FrameTimings {
-  roi: number; field: number; refine: number; deform: number; remesh: number; total: number;
-  /** Render-buffer update in wasm after the core's work. */
-  buffers: number;
-  /** Brush stamps run in the frame (0 for grab frames). */
-  stamps: number;
-}
-
-/** The core's brushes; `'grab'` is the snake hook (the surface under the press follows the pointer). */
-export type BrushToolName = 'draw' | 'inflate' | 'smooth' | 'flatten' | 'pinch' | 'crease' | 'grab';
-/** What the pointer drives: `'pull'` is the handle grab (`app.grab`), the others are brushes. */
-export type ToolName = 'pull' | BrushToolName;
-
-/** Brush settings; the missing ones come from the panel (radius, strength, symmetry X by default). */
-export interface BrushSettings {
-  /** Default: the current tool when it is a brush, else `'draw'`. */
-  tool?: BrushToolName;
-  /** Absolute length. */
-  radius?: number;
-  /** 0..1 (pressure multiplies it). */
-  strength?: number;
-  /** Mirror across the plane x, y or z = 0; `'off'` (or `'none'`) for none. */
-  symmetry?: 'x' | 'y' | 'z' | 'off' | 'none';
-  /** Draw/inflate/crease inwards, flatten/pinch push away. */
-  invert?: boolean;
-  /** A stamp every `spacing` × radius of travel (0.05..4, default 0.25). */
-  spacing?: number;
-}
-
-export interface BrushStroke extends BrushSettings {
-  /** Surface points along the stroke (for the grab brush: the pointer positions in space). */
-  path: Vec3[];
-  /** One value in 0..1 per path point; default 1. */
-  pressure?: number[];
 }
 
 export interface SculptStats {
@@ -157,12 +349,9 @@ export interface SculptStats {
   canUndo: boolean;
   canRedo: boolean;
   settings: CoreSettings;
-  /** The core's quality report (angles, valences, edge lengths, ...). */
-  quality: Record<string, unknown>;
+  /** The core's quality report (`session.stats()`). */
+  quality: QualityReport;
 }
-
-/** The same JSON object as `adasculpt replay --json` prints. */
-export type ReplayReport = Record<string, unknown>;
 
 export interface FrameLogEntry {
   coreMs: number; buffersMs: number; copyMs: number; renderMs: number; totalMs: number;
@@ -170,61 +359,108 @@ export interface FrameLogEntry {
   vertices: number;
 }
 
-/** The page API: `window.app` on the standalone page, or what `createSculptApp` resolves to. */
-export interface SculptApp {
+/** The page API: `window.app` on the standalone page, or what `createSculptApp` resolves to. Dispatches the sculptor's `start`, `change` and `end`. */
+export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start' | 'change' | 'end'>> {
   /**
    * Replaces the mesh (undo history and settings reset). Rejects with the reader's message; the mesh stays.
    * A file that would need more wasm memory than the page can use (2 GB minus the current mesh and its
    * history; estimated from the header or the size) is refused before it is read.
    */
-  load(source: MeshSource, format?: MeshFormat): Promise<{ vertices: number; faces: number }>;
+  load(source: MeshSource, format?: MeshFormat): Promise<MeshCounts>;
   /** Throws on an unknown key or a bad value (nothing changes then). Returns the core's settings. */
   setParams(params: SculptParams): CoreSettings;
-  readonly grab: {
-    begin(args: GrabBegin): void;
-    /** One frame: deform, refine, remesh the region; returns the mesh size and the frame's timings. */
-    drag(transform: GrabTransform): { vertices: number; faces: number; timings: FrameTimings };
-    /** The grab becomes one undo step. */
-    end(): void;
-  };
-  /**
-   * Brush strokes with dynamic topology; a stroke is one undo step. `stroke` runs a whole stroke
-   * (the same as a session file's brush step); `begin`/`stamp`/`end` are the per-frame path the
-   * mouse uses: `stamp` takes all of a frame's samples as `[x, y, z, pressure, ...]` in one wasm call.
-   */
-  readonly brush: {
-    stroke(stroke: BrushStroke): { vertices: number; faces: number; timings: FrameTimings };
-    begin(settings?: BrushSettings): void;
-    stamp(samples: ArrayLike<number>): { vertices: number; faces: number; timings: FrameTimings };
-    end(): void;
-  };
-  /** The current tool (palette, keys 1-8). */
+  readonly grab: GrabApi;
+  readonly brush: BrushApi;
+  /** The current tool (palette, keys 1–8). */
   readonly tool: ToolName;
-  /** Picks the tool; false while a grab or stroke is under way; throws on an unknown name. */
   setTool(name: ToolName): boolean;
-  /** Whole-mesh remeshing, one iteration per animation frame, each one undo step. */
+  /** Whole-mesh remeshing, one iteration per animation frame with a progress display, each one undo step. */
   remesh(options?: { iterations?: number }): Promise<SculptStats>;
   undo(): boolean;
   redo(): boolean;
-  /** Runs a session file (`{"version":1,"settings":{...},"steps":[...]}`) on the current mesh. */
-  replay(session: string | object): Promise<ReplayReport>;
+  replay(session: SessionFile): Promise<ReplayReport>;
   stats(): SculptStats;
   /** The current mesh as a file: OBJ/OFF with round-trip (17 digit) coordinates, binary PLY with doubles, STL (float32 by the format). */
   export(format?: MeshFormat): Promise<ArrayBuffer>;
   bounds(): { min: [number, number, number]; max: [number, number, number] };
-  /** The per-grab-frame timings since the last call (benchmarks). */
+  /** The per-stroke-frame timings since the last call (benchmarks). */
   takeFrameLog(): FrameLogEntry[];
-  /** Frees the wasm Session and instance, GPU resources (geometries, materials, textures, the WebGL context), the DOM it added and every listener. Idempotent. */
+  /** Frees the wasm instance, GPU resources (geometries, materials, textures, the WebGL context), the DOM it added and every listener. Idempotent. */
   dispose(): void;
-  /** The IndexedDB autosave (see `SculptAppOptions.autosave`). */
   readonly autosave: Autosave;
-  /** The Emscripten module instance of this app (advanced use). */
-  readonly module: unknown;
-  /** The embind `Session` of this app (advanced use; deleted by `dispose`). Its `positions()`/`indices()` are
-   * the render buffers, one entry per vertex/face slot: faces deleted by remeshing stay as (0, 0, 0) triangles
-   * until the core compacts the mesh (at the end of a grab or stroke once deleted slots are an eighth, and on
-   * load, remesh, undo and redo). `export` and `stats` give the compacted mesh. */
-  readonly session: unknown;
+  /** The sculptor the app drives (its mesh is the app's surface). */
+  readonly sculptor: AdaptiveSculptor;
+  readonly module: AdasculptModule;
+  readonly session: Session;
 }
 
 export function createSculptApp(container: HTMLElement, options?: SculptAppOptions): Promise<SculptApp>;
+
+// ---------------------------------------------------------------------------------------------
+// The WebAssembly module (cpp/bindings/bindings.cpp), for advanced use and node
+
+/** The core's quality report (`adasculpt stats --json` in camelCase). */
+export interface QualityReport {
+  vertices?: number; faces?: number; edges?: number; boundaryLoops?: number; components?: number; genus?: number;
+  minAngleDeg?: number; maxAngleDeg?: number; meanMinAngleDeg?: number; pctMinAngleLt30?: number; pctMinAngleLt10?: number;
+  valence6Pct?: number; valenceHistogram?: Record<string, number>;
+  edgeLengthMin?: number; edgeLengthMean?: number; edgeLengthMax?: number; edgeLengthStd?: number;
+  degenerateFaces?: number; bboxDiag?: number; area?: number;
+  lastFrame: { roiMs: number; fieldMs: number; refineMs: number; deformMs: number; remeshMs: number; totalMs: number };
+  canUndo: boolean;
+  canRedo: boolean;
+  [key: string]: unknown;
+}
+
+/** What a frame call returns: dirty slot ranges, capacities and byte addresses of the render buffers in wasm memory. */
+export interface RenderChanges extends MeshCounts {
+  reallocated: boolean; indicesChanged: boolean;
+  vertexBegin: number; vertexEnd: number; faceBegin: number; faceEnd: number;
+  vertexCount: number; faceCount: number; vertexCapacity: number; faceCapacity: number;
+  positionsPtr: number; normalsPtr: number; indicesPtr: number;
+  timings: FrameTimings;
+}
+
+/**
+ * `new module.Session()`: one mesh, its settings and undo history. C++ errors are thrown as `Error`s
+ * with the core's message. Call `delete()` when done (embind objects are not garbage-collected).
+ */
+export interface Session {
+  hasMesh(): boolean;
+  loadBytes(bytes: Uint8Array | ArrayBuffer, nameHint: string): void;
+  loadArrays(positions: ArrayLike<number>, indices: ArrayLike<number>): void;
+  setSettings(settings: RemeshParams): void;
+  settings(): CoreSettings;
+  pick(ox: number, oy: number, oz: number, dx: number, dy: number, dz: number): { hit: boolean; x: number; y: number; z: number };
+  grabBegin(cx: number, cy: number, cz: number, handleRadius: number, roiRadius: number): void;
+  grabDrag(tx: number, ty: number, tz: number, ax: number, ay: number, az: number, degrees: number, scale: number): RenderChanges;
+  grabEnd(): void;
+  grabbing(): boolean;
+  brushBegin(settings: BrushSettings & { tool: BrushToolName; radius: number }): void;
+  brushStamp(samples: Float64Array): RenderChanges;
+  brushEnd(): void;
+  brushing(): boolean;
+  remesh(iterations: number): void;
+  undo(): boolean;
+  redo(): boolean;
+  canUndo(): boolean;
+  canRedo(): boolean;
+  replay(file: SessionFile): ReplayReport;
+  stats(): QualityReport;
+  exportMesh(format: MeshFormat): Uint8Array;
+  saveState(maxHistoryBytes: number): Uint8Array;
+  restoreState(bytes: Uint8Array): void;
+  memoryBytes(): number;
+  positions(): Float32Array;
+  normals(): Float32Array;
+  indices(): Uint32Array;
+  changes(): RenderChanges;
+  delete(): void;
+}
+
+export interface AdasculptModule {
+  Session: new () => Session;
+  /** What a new session starts with: `{epsilon: "0.05%", minLength: "0.2%", maxLength: "5%", features: 0}`. */
+  defaultSettings(): Required<RemeshParams>;
+  HEAPU8: Uint8Array;
+}

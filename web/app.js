@@ -1,23 +1,10 @@
-// createSculptApp(container, options): the whole sculpting app inside one element, as an ES module
-// entry for host pages. Returns the page API (also window.app on the main page):
-//   load(source, format?)  URL | File/Blob | ArrayBuffer | typed array  -> Promise<{vertices, faces}>
-//   setParams({epsilon, minLength, maxLength, features})  numbers are absolute, "0.1%" strings relative
-//   grab.begin({center, handleRadius?, roiRadius?}), grab.drag({translate, rotate: {axis, degrees}, scale}),
-//   grab.end()   (drag takes the total transform since begin)
-//   brush.stroke({tool, path, radius, strength, symmetry, pressure}), brush.begin/stamp/end;
-//   setTool('pull' | 'draw' | ... | 'grab'), tool   (web/brush-tool.js)
-//   remesh({iterations})  -> Promise (one iteration per animation frame; each iteration is one undo step)
-//   undo(), redo()  -> boolean;  replay(sessionJson) -> Promise<report>;  stats();  export(format) -> Promise<ArrayBuffer>
-//   dispose()  frees the wasm instance, GPU resources, DOM and every listener.
-// options: model (URL of the first model, null for none), wasmUrl (adasculpt.js), ui (panel and
-// overlays, default true), keyboard ('global': shortcuts on window; default: when the app has focus),
-// autosave (a key: save to IndexedDB after each change and offer to restore on start-up, see
-// web/autosave.js; default false; the standalone page uses 'main').
+// createSculptApp(container, options): the whole sculpting app inside one element (renderer,
+// camera, OrbitControls, tool palette, panel, stats, keyboard, files, autosave), a thin app on top of
+// AdaptiveSculptor (web/AdaptiveSculptor.js), which does the sculpting. Returns the page API
+// (window.app on the main page), declared and documented in web/adasculpt.d.ts.
 import { instantiateCore } from './wasm-module.js';
 import { createViewer } from './viewer.js';
-import { MeshBuffers } from './mesh-buffers.js';
-import { GrabTool } from './grab-tool.js';
-import { BrushTool, BRUSH_STATE, BRUSH_PARAMS, createBrushApi } from './brush-tool.js';
+import { AdaptiveSculptor } from './AdaptiveSculptor.js';
 import { ToolPalette } from './tool-palette.js';
 import { createPanel, SAMPLES } from './panel.js';
 import { createStatsOverlay } from './stats-overlay.js';
@@ -25,12 +12,13 @@ import { createFileInput, createToaster, download } from './file-io.js';
 import { STYLE } from './style.js';
 import { createAutosave, noAutosave } from './autosave.js';
 import { checkMemory, isOutOfMemory, outOfMemoryMessage } from './memory-estimate.js';
+import { TOOL_DEFAULTS, lengthToPercent } from './settings.js';
 import * as THREE from 'three';
 
-const DEFAULT_STATE = {
-  epsilon: 0.05, minLength: 0.2, maxLength: 5, features: 0, iterations: 5,
-  handleRadius: 4, roiRadius: 15, shading: 'matcap', flat: false, wireframe: false, ...BRUSH_STATE,
-};
+// The app's own preferences on top of the shared defaults (web/settings.js, the core's).
+const APP_STATE = { iterations: 5, shading: 'matcap', flat: false, wireframe: false };
+// setParams keys of the app that are the sculptor's under another name (kept for scripts).
+const ALIASES = { brushRadius: 'radius', brushStrength: 'strength' };
 
 export async function createSculptApp(container, options = {}) {
   const opts = { model: SAMPLES.sphere, ui: true, keyboard: 'focus', ...options };
@@ -46,25 +34,34 @@ export async function createSculptApp(container, options = {}) {
   const firstModel = opts.model ? readSource(opts.model).catch((e) => e) : null;
   const Module = await instantiateCore(opts.wasmUrl);
   const wasmReadyMs = performance.now();
-  const session = new Module.Session();
   const viewer = createViewer(root);
-  const buffers = new MeshBuffers(Module);
-  buffers.onGeometry = (g, lines) => viewer.setGeometry(g, lines);
+  const keyTarget = opts.keyboard === 'global' ? window : root;
+  const sculptor = await AdaptiveSculptor.create(viewer.surface, viewer.camera, {
+    module: Module, keyTarget, controls: viewer.controls, wireframe: true, tool: 'pull',
+    grabPreview: (g) => viewer.setBrush(g),
+  });
+  const session = sculptor.session;
+  viewer.setWireGeometry(sculptor.buffers.lines);
   const toaster = createToaster(root);
-  const state = { ...DEFAULT_STATE, sample: Object.keys(SAMPLES).find((k) => SAMPLES[k] === opts.model) || 'sphere' };
-  let diagonal = 1;
-  let remeshing = null;   // {done, total} while a whole-mesh remesh runs
+  const core = Module.defaultSettings();
+  const pctOf = (v) => lengthToPercent(v, 1, 'default');
+  const state = {
+    ...APP_STATE,
+    epsilon: pctOf(core.epsilon), minLength: pctOf(core.minLength), maxLength: pctOf(core.maxLength), features: core.features,
+    tool: sculptor.tool, brushRadius: 0, brushStrength: 0, symmetry: TOOL_DEFAULTS.symmetry, handleRadius: 0, roiRadius: 0,
+    sample: Object.keys(SAMPLES).find((k) => SAMPLES[k] === opts.model) || 'sphere',
+  };
   let disposed = false;
   let firstRenderMs = null;
   let quality = {};
   let qualityStale = false;  // a stroke ended since `quality` was read (refreshQualityWhenIdle)
   let qualityTimer = null;
   const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0, dragged: false };
-  const frameLog = []; // per grab frame: core phases, buffer update, copy, render (for benchmarks)
+  const frameLog = []; // per stroke frame: core phases, buffer update, copy, render (for benchmarks)
   let sourceName = opts.model ? String(opts.model).split(/[?#]/)[0].split('/').pop() : 'mesh';
   const autosave = opts.autosave ? createAutosave(String(opts.autosave), {
     session, toaster, root: opts.ui ? root : null,
-    busy: () => !!remeshing || tool.active || session.grabbing() || (!!session.brushing && session.brushing()),
+    busy: () => sculptor.busy || session.grabbing() || session.brushing(),
     sourceName: () => sourceName,
     counts: () => {
       if (qualityStale) refreshQuality();
@@ -72,65 +69,80 @@ export async function createSculptApp(container, options = {}) {
     },
     restored: (record) => {
       sourceName = record.name;
-      sync();
+      sculptor.resync();
       readSettings();
-      viewer.fitView(buffers.boundingBox());
+      viewer.fitView(sculptor.buffers.boundingBox());
       refreshQuality();
     },
   }) : noAutosave();
 
-  // ---- keeping three.js in step with the core
-  function sync(changes) {
-    const t0 = performance.now();
-    const ch = changes || session.changes();
-    if (buffers.apply(ch)) viewer.requestRender();
-    frame.copyMs = performance.now() - t0;
-    frame.vertices = ch.vertices;
-    frame.faces = ch.faces;
-    frame.core = ch.timings;
-  }
+  // ---- the sculptor's events: redraw, frame figures, the whole-mesh report after a stroke
+  sculptor.addEventListener('change', (e) => {
+    viewer.requestRender();
+    if (e.timings) {
+      frame.core = e.timings;
+      frame.copyMs = e.copyMs;
+      frame.vertices = e.vertices;
+      frame.faces = e.faces;
+      if (sculptor._stroke) frame.dragged = true;
+    }
+  });
+  sculptor.addEventListener('end', () => {
+    refreshQualityWhenIdle();
+    autosave.changed();
+  });
+  sculptor.addEventListener('params', () => { readToolParams(); if (panel) panel.refresh(); });
+  sculptor.addEventListener('tool', (e) => { state.tool = e.tool; if (panel) panel.refresh(); });
+  sculptor.addEventListener('error', (e) => toaster.show(e.error.message, 'error'));
+  sculptor.addEventListener('notice', (e) => toaster.show(e.message));
 
   function refreshQuality() {
     qualityStale = false;
     clearTimeout(qualityTimer);
-    quality = JSON.parse(session.stats());
+    quality = session.stats();
     if (stats) {
       stats.update({
         vertices: quality.vertices ?? 0, faces: quality.faces ?? 0,
-        minAngle: quality.min_angle_deg, meanMinAngle: quality.mean_min_angle_deg,
+        minAngle: quality.minAngleDeg, meanMinAngle: quality.meanMinAngleDeg,
       });
     }
     if (panel) panel.setHistory(session.canUndo(), session.canRedo());
   }
 
-  // Settings in the panel are percent of the diagonal; the core answers in absolute lengths.
+  // The panel shows lengths in percent of the diagonal; the core answers in absolute lengths.
   function readSettings() {
-    const s = JSON.parse(session.settings());
-    diagonal = s.diagonal || 1;
+    const s = session.settings();
+    const diagonal = s.diagonal || 1;
     const pct = (x) => Math.round((x / diagonal) * 100 * 1e4) / 1e4;
     state.epsilon = pct(s.epsilon);
-    state.minLength = pct(s.min_length);
-    state.maxLength = pct(s.max_length);
+    state.minLength = pct(s.minLength);
+    state.maxLength = pct(s.maxLength);
     state.features = s.features;
+    readToolParams();
     if (panel) panel.refresh();
     return s;
   }
-
-  function radii() {
-    return { handle: (state.handleRadius / 100) * diagonal, roi: (state.roiRadius / 100) * diagonal };
+  function readToolParams() {
+    const p = sculptor.params;
+    state.brushRadius = p.percent.radius;
+    state.handleRadius = p.percent.handleRadius;
+    state.roiRadius = p.percent.roiRadius;
+    state.brushStrength = p.strength;
+    state.symmetry = p.symmetry;
+    state.tool = p.tool;
   }
+  readToolParams();
 
   function loadBytes({ bytes, name }) {
     if (disposed) throw new Error('app disposed');
     try {
-      session.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
+      sculptor.loadBytes(bytes, name); // throws with the reader's message; the old mesh stays
     } catch (e) {
       throw isOutOfMemory(e) ? new Error(outOfMemoryMessage(name, session.memoryBytes())) : e;
     }
     sourceName = name;
-    sync();
     readSettings();
-    viewer.fitView(buffers.boundingBox());
+    viewer.fitView(sculptor.buffers.boundingBox());
     refreshQuality();
     return { vertices: quality.vertices, faces: quality.faces };
   }
@@ -144,7 +156,7 @@ export async function createSculptApp(container, options = {}) {
     clearTimeout(qualityTimer);
     qualityTimer = setTimeout(function settle() {
       if (disposed || !qualityStale) return;
-      if (session.grabbing() || (session.brushing && session.brushing())) {
+      if (session.grabbing() || session.brushing()) {
         qualityTimer = setTimeout(settle, 250);
         return;
       }
@@ -153,7 +165,6 @@ export async function createSculptApp(container, options = {}) {
   }
 
   function afterWholeMeshChange() {
-    sync();
     refreshQuality();
     autosave.changed();
   }
@@ -164,10 +175,11 @@ export async function createSculptApp(container, options = {}) {
     if (!c.ok) throw new Error(c.message);
   }
 
-  // ---- the page API
-  const api = {
+  // ---- the page API (an EventDispatcher: start, change, end as the sculptor's)
+  const api = Object.defineProperties(new THREE.EventDispatcher(), Object.getOwnPropertyDescriptors({
     get module() { return Module; },
     get session() { return session; },
+    get sculptor() { return sculptor; },
 
     async load(source, format) {
       const isBlob = typeof Blob !== 'undefined' && source instanceof Blob;
@@ -186,75 +198,25 @@ export async function createSculptApp(container, options = {}) {
     // IndexedDB autosave (web/autosave.js): flush(), restore(), clear(), saved(), pending, enabled.
     get autosave() { return autosave; },
 
+    // The sculptor's parameters (brushRadius/brushStrength: old names of radius/strength).
     setParams(p = {}) {
-      const keys = { epsilon: 'epsilon', minLength: 'min_length', maxLength: 'max_length', features: 'features' };
-      const s = {};
-      const radius = {}; // handleRadius, roiRadius, brushRadius: the tools' defaults, kept in percent like the panel
-      const brush = {}; // brushStrength, symmetry
-      for (const [k, v] of Object.entries(p)) {
-        if (['handleRadius', 'roiRadius', 'brushRadius'].includes(k)) radius[k] = percentOfDiagonal(v, k, diagonal);
-        else if (k in BRUSH_PARAMS) brush[k] = BRUSH_PARAMS[k](v);
-        else if (!(k in keys)) throw new Error(`setParams: unknown parameter '${k}'`);
-        else s[keys[k]] = v;
-      }
-      session.setSettings(JSON.stringify(s));
+      const q = {};
+      for (const [k, v] of Object.entries(p)) q[ALIASES[k] || k] = v;
+      if ('tool' in q) throw new Error("setParams: unknown parameter 'tool' (use setTool)");
+      sculptor.setParams(q);
       autosave.changed();
-      Object.assign(state, radius, brush);
-      if (radius.handleRadius !== undefined || radius.roiRadius !== undefined) tool.updateBrush();
-      brushTool.updateCursor();
       return readSettings();
     },
 
-    grab: {
-      begin({ center, handleRadius, roiRadius } = {}) {
-        const r = radii();
-        const c = toVec3(center, 'center');
-        session.grabBegin(c.x, c.y, c.z, handleRadius ?? r.handle, roiRadius ?? r.roi);
-        sync();
-      },
-      drag({ translate = [0, 0, 0], rotate = { axis: [0, 0, 1], degrees: 0 }, scale = 1 } = {}) {
-        const t = toVec3(translate, 'translate');
-        const a = toVec3(rotate.axis || [0, 0, 1], 'rotate.axis');
-        sync(session.grabDrag(t.x, t.y, t.z, a.x, a.y, a.z, rotate.degrees || 0, scale));
-        frame.dragged = true;
-        return { vertices: frame.vertices, faces: frame.faces, timings: frame.core };
-      },
-      end() {
-        session.grabEnd();
-        afterWholeMeshChange();
-      },
-    },
-
-    // Brush strokes (web/brush-tool.js): brush.stroke({tool, path, radius, strength, symmetry, pressure}),
-    // or brush.begin/stamp/end; radius absolute, defaults from the panel.
-    brush: createBrushApi({
-      session,
-      applyChanges: (ch) => { sync(ch); frame.dragged = true; },
-      afterStroke: () => {
-        sync();
-        refreshQualityWhenIdle();
-        autosave.changed();
-      },
-      defaults: () => ({ tool: state.tool === 'pull' ? 'draw' : state.tool, radius: (state.brushRadius / 100) * diagonal,
-        strength: state.brushStrength, symmetry: state.symmetry, detailPixels: state.detailPixels }),
-    }),
-    get tool() { return palette.tool; },
-    setTool(name) { return palette.setTool(name); },
+    get grab() { return grab; },
+    get brush() { return brush; },
+    get tool() { return sculptor.tool; },
+    setTool(name) { return sculptor.setTool(name); },
 
     async remesh({ iterations = state.iterations } = {}) {
-      if (remeshing) throw new Error('a remesh is already running');
-      remeshing = { done: 0, total: iterations };
       try {
-        for (let i = 0; i < iterations && !disposed; i++) {
-          if (panel) panel.setProgress(remeshing);
-          await nextFrame();
-          if (disposed) break;
-          session.remesh(1);
-          sync();
-          remeshing.done = i + 1;
-        }
+        await sculptor.remesh({ iterations, onProgress: (p) => { if (panel) panel.setProgress(p); } });
       } finally {
-        remeshing = null;
         if (!disposed) {
           if (panel) panel.setProgress(null);
           refreshQuality();
@@ -265,21 +227,18 @@ export async function createSculptApp(container, options = {}) {
     },
 
     undo() {
-      if ((tool && tool.active) || (brushTool && brushTool.active)) return false;
-      const ok = session.undo();
+      const ok = sculptor.undo();
       afterWholeMeshChange();
       return ok;
     },
     redo() {
-      if ((tool && tool.active) || (brushTool && brushTool.active)) return false;
-      const ok = session.redo();
+      const ok = sculptor.redo();
       afterWholeMeshChange();
       return ok;
     },
 
     async replay(sessionJson) {
-      const text = typeof sessionJson === 'string' ? sessionJson : JSON.stringify(sessionJson);
-      const report = JSON.parse(session.replay(text));
+      const report = sculptor.replay(sessionJson);
       afterWholeMeshChange();
       return report;
     },
@@ -290,8 +249,8 @@ export async function createSculptApp(container, options = {}) {
       return {
         vertices: quality.vertices ?? 0,
         faces: quality.faces ?? 0,
-        minAngle: quality.min_angle_deg ?? null,
-        meanMinAngle: quality.mean_min_angle_deg ?? null,
+        minAngle: quality.minAngleDeg ?? null,
+        meanMinAngle: quality.meanMinAngleDeg ?? null,
         lastFrameMs: (t.total ?? 0) + (t.buffers ?? 0) + frame.copyMs + frame.renderMs,
         coreMs: t.total ?? 0,
         buffersMs: t.buffers ?? 0,
@@ -302,7 +261,7 @@ export async function createSculptApp(container, options = {}) {
         wasmReadyMs,
         canUndo: session.canUndo(),
         canRedo: session.canRedo(),
-        settings: JSON.parse(session.settings()),
+        settings: session.settings(),
         quality,
       };
     },
@@ -312,60 +271,29 @@ export async function createSculptApp(container, options = {}) {
       return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
     },
 
-    // The grab frames since the last call (core, buffers, copy, render ms each), for benchmarks.
+    // The stroke frames since the last call (core, buffers, copy, render ms each), for benchmarks.
     takeFrameLog() {
       return frameLog.splice(0, frameLog.length);
     },
 
     // Axis-aligned bounds of the drawn mesh: {min: [x,y,z], max: [x,y,z]}.
     bounds() {
-      const b = buffers.boundingBox();
+      const b = sculptor.buffers.boundingBox();
       return { min: b.min.toArray(), max: b.max.toArray() };
     },
 
     dispose,
-  };
-
-  // ---- interaction: the grab tool talks to the core through this adapter
-  const keyTarget = opts.keyboard === 'global' ? window : root;
-  const core = {
-    pick(ray) {
-      if (!session.hasMesh()) return null;
-      const o = ray.origin, d = ray.direction;
-      const h = session.pick(o.x, o.y, o.z, d.x, d.y, d.z);
-      return h && h.hit ? new THREE.Vector3(h.x, h.y, h.z) : null;
-    },
-    begin(center) { guard(() => api.grab.begin({ center: center.toArray() })); },
-    drag(t) { return guard(() => api.grab.drag(t)); },
-    notify: (message) => toaster.show(message),
-    end() { guard(() => api.grab.end()); },
-    radii,
-    scaleRadii(fh, fr) {
-      state.roiRadius = clamp(state.roiRadius * fr, 1, 80);
-      state.handleRadius = clamp(state.handleRadius * fh, 0.5, Math.min(30, state.roiRadius * 0.9));
-      if (panel) panel.refresh();
-    },
-    busy: () => !!remeshing || !session.hasMesh(),
-  };
-  const tool = new GrabTool(viewer, core, keyTarget);
-  const brushTool = new BrushTool(viewer, {
-    begin: (s) => guard(() => { api.brush.begin(s); return true; }) === true,
-    stamp: (samples) => guard(() => api.brush.stamp(samples)),
-    end: () => guard(() => api.brush.end()),
-    busy: () => !!remeshing, // no wasm call: without a mesh there is no geometry to hit
-    radius: () => (state.brushRadius / 100) * diagonal,
-    geometry: () => buffers.geometry,
-    changed: () => { if (panel) panel.refresh(); },
-  }, keyTarget, state);
-
-  function guard(fn) {
-    try {
-      return fn();
-    } catch (e) {
-      toaster.show(e.message, 'error');
-      return undefined;
-    }
+  }));
+  for (const type of ['start', 'change', 'end']) {
+    sculptor.addEventListener(type, (e) => api.dispatchEvent({ ...e, target: undefined }));
   }
+  // The programmatic strokes are the sculptor's; the whole-mesh report follows each stroke.
+  const grab = {
+    begin: (args) => sculptor.grab.begin(args),
+    drag: (t) => sculptor.grab.drag(t),
+    end: () => sculptor.grab.end(),
+  };
+  const brush = sculptor.brush;
 
   const onKey = (e) => {
     if (!(e.ctrlKey || e.metaKey) || e.altKey) return;
@@ -376,6 +304,14 @@ export async function createSculptApp(container, options = {}) {
     }
   };
   keyTarget.addEventListener('keydown', onKey);
+  function guard(fn) {
+    try {
+      return fn();
+    } catch (e) {
+      toaster.show(e.message, 'error');
+      return undefined;
+    }
+  }
 
   // ---- UI: file input / drop, panel, stats
   const openFile = async (file) => {
@@ -404,8 +340,13 @@ export async function createSculptApp(container, options = {}) {
         epsilon: `${state.epsilon}%`, minLength: `${state.minLength}%`, maxLength: `${state.maxLength}%`, features: state.features,
       })),
       remesh: () => api.remesh({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
-      radii: () => { if (state.handleRadius > state.roiRadius) state.handleRadius = state.roiRadius * 0.9; tool.updateBrush(); },
-      brush: () => brushTool.updateCursor(),
+      radii: () => {
+        if (state.handleRadius > state.roiRadius) state.handleRadius = state.roiRadius * 0.9;
+        guard(() => sculptor.setParams({ handleRadius: `${state.handleRadius}%`, roiRadius: `${state.roiRadius}%` }));
+      },
+      brush: () => guard(() => sculptor.setParams({
+        radius: `${state.brushRadius}%`, strength: state.brushStrength, symmetry: state.symmetry,
+      })),
       display: () => applyDisplay(),
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
@@ -425,29 +366,27 @@ export async function createSculptApp(container, options = {}) {
       'drag elsewhere: orbit · Ctrl+Z / Ctrl+Shift+Z';
     root.appendChild(help);
   }
-  const palette = new ToolPalette(opts.ui ? root : null, keyTarget, {
-    grabTool: tool, brushTool, state, onChange: () => { if (panel) panel.refresh(); },
-  });
+  const palette = new ToolPalette(opts.ui ? root : null, keyTarget, sculptor);
   function applyDisplay() {
     viewer.setShading({ mode: state.shading, flat: state.flat });
     viewer.setWireframe(state.wireframe);
   }
   applyDisplay();
+  sculptor.connect(viewer.renderer.domElement);
 
   // ---- the frame loop: at most one wasm call (the grab's or the stroke's) and one render per frame
   let raf = 0;
   let statsShownAt = 0;
   function loop(now) {
     raf = requestAnimationFrame(loop);
-    const grabbing = tool.active || brushTool.active;
-    tool.frame();
-    brushTool.frame();
+    const active = sculptor.grabTool.active || sculptor.brushTool.active;
+    sculptor.update();
     if (viewer.needsRender) {
       const r0 = performance.now();
       viewer.render();
       frame.renderMs = performance.now() - r0;
       if (firstRenderMs === null && session.hasMesh()) firstRenderMs = performance.now();
-      if (stats && grabbing) stats.tick(now);
+      if (stats && active) stats.tick(now);
     }
     if (frame.dragged) {
       frame.dragged = false;
@@ -456,7 +395,7 @@ export async function createSculptApp(container, options = {}) {
       frameLog.push({ coreMs: t.total, buffersMs: t.buffers, copyMs: frame.copyMs, renderMs: frame.renderMs,
         totalMs: t.total + t.buffers + frame.copyMs + frame.renderMs, phases: { ...t }, vertices: frame.vertices });
     }
-    if (stats && grabbing && now - statsShownAt > 100) {
+    if (stats && active && now - statsShownAt > 100) {
       statsShownAt = now;
       stats.update({ timings: frame.core, uploadMs: (frame.core?.buffers ?? 0) + frame.copyMs + frame.renderMs,
         vertices: frame.vertices, faces: frame.faces });
@@ -471,17 +410,14 @@ export async function createSculptApp(container, options = {}) {
     cancelAnimationFrame(raf);
     autosave.dispose();
     keyTarget.removeEventListener('keydown', onKey);
-    tool.dispose();
-    brushTool.dispose();
     palette.dispose();
+    sculptor.dispose();
     fileInput.dispose();
     toaster.dispose();
     if (panel) panel.dispose();
     if (stats) stats.dispose();
     if (help) help.remove();
-    buffers.dispose();
     viewer.dispose();
-    session.delete();
     root.remove();
   }
 
@@ -521,20 +457,3 @@ async function readSource(source, format) {
   return { bytes: new Uint8Array(buffer), name };
 }
 
-function toVec3(v, what) {
-  if (v && v.isVector3) return v;
-  if (Array.isArray(v) && v.length === 3 && v.every(Number.isFinite)) return new THREE.Vector3(v[0], v[1], v[2]);
-  if (v && [v.x, v.y, v.z].every(Number.isFinite)) return new THREE.Vector3(v.x, v.y, v.z);
-  throw new Error(`${what}: expected [x, y, z]`);
-}
-
-// A length given as a number (absolute) or "x%" (of the diagonal), in percent of the diagonal.
-function percentOfDiagonal(v, what, diagonal) {
-  const pct = typeof v === 'string' && v.trim().endsWith('%');
-  const x = pct ? Number(v.trim().slice(0, -1)) : Number(v);
-  if (!Number.isFinite(x) || x <= 0) throw new Error(`setParams: ${what} must be a positive number or "x%"`);
-  return pct ? x : (x / diagonal) * 100;
-}
-
-function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }
-function nextFrame() { return new Promise((resolve) => requestAnimationFrame(() => resolve())); }

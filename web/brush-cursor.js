@@ -1,7 +1,8 @@
 // The brush cursor: a ring lying on the surface at the hit point (its plane perpendicular to the
 // surface normal), as wide as the brush radius, with an inner ring showing the strength. Drawn over
 // the surface (no depth test) so a curved surface cannot hide half of it; orange when the brush
-// adds, blue when it is inverted.
+// adds, blue when it is inverted. A child of the sculpted mesh: it lives in the mesh's own
+// coordinates, like the core's positions and radii.
 import * as THREE from 'three';
 
 const ADD_COLOR = new THREE.Color(1.0, 0.62, 0.25);
@@ -19,8 +20,10 @@ function circle(segments) {
 }
 
 export class BrushCursor {
-  constructor(viewer) {
-    this.viewer = viewer;
+  // parent: the sculpted mesh; changed(): something to draw changed (the host renders).
+  constructor(parent, changed) {
+    this.parent = parent;
+    this.changed = changed;
     this.geometry = circle(72);
     const material = () => new THREE.LineBasicMaterial({ color: ADD_COLOR, transparent: true, depthTest: false, depthWrite: false });
     this.outer = new THREE.LineLoop(this.geometry, material());
@@ -30,14 +33,14 @@ export class BrushCursor {
     this.group.add(this.outer, this.inner);
     this.group.renderOrder = this.outer.renderOrder = this.inner.renderOrder = 10;
     this.group.visible = false;
-    viewer.scene.add(this.group);
+    parent.add(this.group);
   }
 
   // Where and how big; null point hides it.
   show(point, normal, radius, strength, inverted) {
     const g = this.group;
     if (!point) {
-      if (g.visible) { g.visible = false; this.viewer.requestRender(); }
+      if (g.visible) { g.visible = false; this.changed(); }
       return;
     }
     g.visible = true;
@@ -48,7 +51,7 @@ export class BrushCursor {
     const c = inverted ? INVERT_COLOR : ADD_COLOR;
     this.outer.material.color.copy(c);
     this.inner.material.color.copy(c);
-    this.viewer.requestRender();
+    this.changed();
   }
 
   get visible() { return this.group.visible; }
@@ -56,7 +59,7 @@ export class BrushCursor {
   get radius() { return this.outer.scale.x; }
 
   dispose() {
-    this.viewer.scene.remove(this.group);
+    this.parent.remove(this.group);
     this.geometry.dispose();
     this.outer.material.dispose();
     this.inner.material.dispose();

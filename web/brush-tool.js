@@ -6,15 +6,19 @@
 // One wasm call per animation frame while stroking: pointer events (and their coalesced samples)
 // only queue screen positions; frame() finds the surface under each of them in JS
 // (surface-raycast.js) and sends them all in one brushStamp call as x, y, z, pressure.
-// The grab brush ("snake hook") drags the surface under the press along: its samples are the
-// pointer on the view plane through the press point, as the core expects.
+// The snake hook drags the surface under the press along: its samples are the pointer on the view
+// plane through the press point, as the core expects. Everything is in the sculpted mesh's own
+// coordinates (view.ray converts the pointer).
 import * as THREE from 'three';
 import { BrushCursor } from './brush-cursor.js';
 import { raycastSurface } from './surface-raycast.js';
-import { bindToolEvents, isTextInput } from './tool-events.js';
+import { CanvasTool, isTextInput } from './tool-events.js';
+import { checkSymmetry } from './settings.js';
 
 // The tool palette: the paper's handle grab (web/grab-tool.js) and the core's seven brushes.
-// `name` is what app.setTool takes and, for brushes, the core's tool name.
+// `name` is what setTool takes and, for brushes, the core's tool name. ('grab' is not a tool name:
+// the handle grab is 'pull' and app.grab; the snake-hook brush was called 'grab' before, and the core
+// still reads that in old session files.)
 export const TOOLS = [
   { name: 'pull', label: 'Pull', key: '1', title: 'handle grab: drag the surface, R rotate, S scale' },
   { name: 'draw', label: 'Draw', key: '2', title: 'raise the surface along the stroke' },
@@ -23,56 +27,40 @@ export const TOOLS = [
   { name: 'flatten', label: 'Flatten', key: '5', title: 'move the surface towards its mean plane' },
   { name: 'pinch', label: 'Pinch', key: '6', title: 'pull the surface towards the stroke' },
   { name: 'crease', label: 'Crease', key: '7', title: 'cut a sharp groove (inverted: a ridge)' },
-  { name: 'grab', label: 'Snake hook', key: '8', title: 'grab brush: drag the surface under the press along' },
+  { name: 'snakeHook', label: 'Snake hook', key: '8', title: 'drag the surface under the press along' },
 ];
-export const SYMMETRY = ['x', 'y', 'z', 'off'];
-// The brush part of the app state (radius in percent of the diagonal, like the panel's lengths).
-// detailPixels > 0: strokes remesh to edges of that many screen pixels at the brush (the detail
-// follows the view, Blender's relative detail) instead of the remesh settings (epsilon, lengths).
-export const BRUSH_STATE = { tool: 'pull', brushRadius: 5, brushStrength: 0.5, symmetry: 'x', detailPixels: 0 };
 
-// setParams keys of the brushes besides brushRadius (a length, handled with the grab radii): checked values.
-export const BRUSH_PARAMS = {
-  brushStrength(v) {
-    if (typeof v !== 'number' || !(v >= 0 && v <= 1)) throw new Error('setParams: brushStrength must be a number between 0 and 1');
-    return v;
-  },
-  detailPixels(v) {
-    if (typeof v !== 'number' || !(v >= 0 && v <= 100)) throw new Error('setParams: detailPixels must be a number between 0 (off) and 100');
-    return v;
-  },
-  symmetry(v) {
-    const s = v === 'none' ? 'off' : v;
-    if (!SYMMETRY.includes(s)) throw new Error(`setParams: symmetry must be one of ${SYMMETRY.join(', ')}`);
-    return s;
-  },
-};
+export function checkTool(name) {
+  if (!TOOLS.some((t) => t.name === name)) {
+    const hint = name === 'grab' ? ' (the snake-hook brush is \'snakeHook\'; the handle grab is \'pull\')' : '';
+    throw new Error(`setTool: unknown tool '${name}'${hint}; one of ${TOOLS.map((t) => t.name).join(', ')}`);
+  }
+  return name;
+}
 
 const STRENGTH_STEP = 0.05;
 const RADIUS_FACTOR = 1.15;
 
-// The page API's `brush` (app.brush). session: the embind Session; applyChanges(changes): copies a
-// frame's changes into three.js; afterStroke(): the stroke ended; defaults():
-// {tool, radius (absolute), strength, symmetry} from the panel.
-export function createBrushApi({ session, applyChanges, afterStroke, defaults }) {
+// The programmatic strokes (sculptor.brush, app.brush). session: the embind Session; stroke: the
+// sculptor's stroke life cycle {begin(kind, fn), frame(changes), end(fn)}; defaults(): {tool,
+// radius (absolute), strength, symmetry} from the current settings.
+export function createBrushApi({ session, stroke, defaults }) {
   const api = {
-    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing, detail (an edge length for
-    // this stroke), pixelSize (the world size of a screen pixel at the brush: with the panel's detailPixels, the
-    // stroke's detail)}; missing ones from the panel.
+    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing}; missing ones from the current ones.
     begin(settings = {}) {
-      session.brushBegin(coreSettings(settings, defaults()));
+      const s = coreSettings(settings, defaults());
+      stroke.begin(s.tool, () => session.brushBegin(s));
     },
     // samples: [x, y, z, pressure, ...] (array or typed array); the whole frame in one wasm call.
     stamp(samples) {
       const ch = session.brushStamp(samples instanceof Float64Array ? samples : Float64Array.from(samples));
-      applyChanges(ch);
+      stroke.frame(ch);
       return { vertices: ch.vertices, faces: ch.faces, timings: ch.timings };
     },
     end() {
-      session.brushEnd();
-      afterStroke();
+      stroke.end(() => session.brushEnd());
     },
-    // A whole stroke (one undo step): path [[x, y, z], ...] of surface points (the grab brush: the
+    // A whole stroke (one undo step): path [[x, y, z], ...] of surface points (the snake hook: the
     // pointer positions), pressure optional (one per point, 0..1).
     stroke({ path, pressure, ...settings } = {}) {
       if (!Array.isArray(path) || path.length === 0) throw new Error('brush.stroke: path must be a non-empty array of [x, y, z]');
@@ -98,45 +86,44 @@ export function createBrushApi({ session, applyChanges, afterStroke, defaults })
 
 // The core's brush settings from the API's (symmetry 'off' is the core's 'none').
 function coreSettings(s, d) {
-  const symmetry = s.symmetry ?? d.symmetry;
+  const symmetry = checkSymmetry(s.symmetry ?? d.symmetry);
+  const tool = s.tool ?? d.tool;
+  if (tool === 'pull') throw new Error("brush: 'pull' is the handle grab (grab.begin/drag/end), not a brush");
   return {
-    tool: s.tool ?? d.tool,
+    tool: checkTool(tool),
     radius: s.radius ?? d.radius,
     strength: s.strength ?? d.strength,
-    symmetry: symmetry === 'off' || symmetry === false || symmetry === null ? 'none' : symmetry,
+    symmetry: symmetry === 'off' ? 'none' : symmetry,
     ...(s.invert !== undefined ? { invert: s.invert } : {}),
     ...(s.spacing !== undefined ? { spacing: s.spacing } : {}),
-    ...(detailLength(s, d) > 0 ? { detail: detailLength(s, d) } : {}),
   };
 }
 
-// The stroke's own edge length: given, or the panel's detail in pixels times a pixel's size at the brush.
-function detailLength(s, d) {
-  if (s.detail !== undefined) return s.detail;
-  return d.detailPixels > 0 && s.pixelSize > 0 ? d.detailPixels * s.pixelSize : 0;
-}
-
-export class BrushTool {
+export class BrushTool extends CanvasTool {
+  // view: as GrabTool's, plus cursorParent (the sculpted mesh) and changed() (redraw).
   // core: { begin({invert}) -> bool (false: did not start), stamp(Float64Array), end(), busy(),
-  //         radius() (absolute), geometry() (the drawn BufferGeometry), changed() (state edited by keys) }
-  // state: the app state (tool, brushRadius, brushStrength, symmetry).
-  constructor(viewer, core, keyTarget, state) {
-    this.viewer = viewer;
+  //         radius() (absolute), scaleRadius(factor), strength(), addStrength(delta), tool(),
+  //         geometry() (the drawn BufferGeometry) }
+  constructor(view, core) {
+    super();
+    this.view = view;
     this.core = core;
-    this.state = state;
     this.enabled = false;
     this.stroke = null;      // {pointerId, pending: [{x, y, pressure}], snake, plane, inverted, hit}
     this.hover = null;       // last pointer position while not stroking
     this.hoverPending = false;
     this.hoverHit = null;
-    this.pointerInside = false;
     this.modifier = false;   // Ctrl/Alt held: the cursor previews the inverted brush
-    this.cursor = new BrushCursor(viewer);
-    this.unbind = bindToolEvents(this, viewer.renderer.domElement, keyTarget);
+    this.cursor = new BrushCursor(view.cursorParent, view.changed);
+  }
+
+  onDisconnect() {
+    this.hoverHit = null;
+    this.updateCursor();
   }
 
   dispose() {
-    this.unbind();
+    this.disconnect();
     this.cursor.dispose();
   }
 
@@ -151,25 +138,24 @@ export class BrushTool {
 
   onPointerDown(e) {
     if (!this.enabled || e.button !== 0 || this.stroke || this.core.busy()) return;
-    const hit = raycastSurface(this.core.geometry(), this.viewer.ray(e.clientX, e.clientY));
+    const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
     if (!hit) return; // empty space: let OrbitControls rotate the view
     e.stopImmediatePropagation();
     e.preventDefault();
     const inverted = e.ctrlKey || e.altKey;
-    if (!this.core.begin({ invert: inverted, pixelSize: pixelSizeAt(this.viewer, hit.point) })) return;
-    this.viewer.controls.enabled = false;
+    if (!this.core.begin({ invert: inverted })) return;
+    this.view.setOrbit(false);
     try {
       e.target.setPointerCapture(e.pointerId); // strokes continue outside the canvas
     } catch {
       // not a live pointer (a synthetic event): the stroke still works inside the canvas
     }
-    const viewDir = this.viewer.camera.getWorldDirection(new THREE.Vector3());
     this.stroke = {
       pointerId: e.pointerId,
       pending: [sample(e)],
-      snake: this.state.tool === 'grab',
-      plane: new THREE.Plane().setFromNormalAndCoplanarPoint(viewDir, hit.point),
-      facing: viewDir.clone().negate(),
+      snake: this.core.tool() === 'snakeHook',
+      plane: this.view.viewPlane(hit.point),
+      facing: this.view.viewDirection().negate(),
       inverted,
       hit,
     };
@@ -187,11 +173,13 @@ export class BrushTool {
     if (!this.stroke) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
+      this.view.schedule();
       return;
     }
     if (e.pointerId !== this.stroke.pointerId) return;
     const events = typeof e.getCoalescedEvents === 'function' ? e.getCoalescedEvents() : [];
     for (const ev of events.length ? events : [e]) this.stroke.pending.push(sample(ev));
+    this.view.schedule();
   }
 
   onPointerUp(e) {
@@ -199,9 +187,10 @@ export class BrushTool {
     if (this.stroke.pending.length) this.flush(); // the last motion still reaches the core
     this.stroke = null;
     this.core.end();
-    this.viewer.controls.enabled = true;
+    this.view.setOrbit(true);
     this.hover = { x: e.clientX, y: e.clientY };
     this.hoverPending = true;
+    this.view.schedule();
   }
 
   onWheel(e) {
@@ -233,14 +222,12 @@ export class BrushTool {
   }
 
   scaleRadius(f) {
-    this.state.brushRadius = round(clamp(this.state.brushRadius * f, 0.5, 30), 3);
-    this.core.changed();
+    this.core.scaleRadius(f);
     this.updateCursor();
   }
 
   addStrength(d) {
-    this.state.brushStrength = round(clamp(this.state.brushStrength + d, 0.05, 1), 3);
-    this.core.changed();
+    this.core.addStrength(d);
     this.updateCursor();
   }
 
@@ -250,7 +237,7 @@ export class BrushTool {
       if (this.stroke.pending.length) this.flush();
     } else if (this.enabled && this.hoverPending && this.hover && this.pointerInside) {
       this.hoverPending = false;
-      this.hoverHit = this.core.busy() ? null : raycastSurface(this.core.geometry(), this.viewer.ray(this.hover.x, this.hover.y));
+      this.hoverHit = this.core.busy() ? null : raycastSurface(this.core.geometry(), this.view.ray(this.hover.x, this.hover.y));
       this.updateCursor();
     }
   }
@@ -264,7 +251,7 @@ export class BrushTool {
     const out = [];
     const last = s.pending.length - 1;
     s.pending.forEach((q, i) => {
-      const ray = this.viewer.ray(q.x, q.y);
+      const ray = this.view.ray(q.x, q.y);
       const hit = s.snake ? planeHit(ray, s.plane, s.facing)
         : (i < last && this.nearHit(ray, s.hit)) || raycastSurface(this.core.geometry(), ray);
       if (!hit) return; // off the surface: the stroke resumes where the pointer comes back
@@ -289,7 +276,7 @@ export class BrushTool {
       return;
     }
     const inverted = this.stroke ? this.stroke.inverted : this.modifier;
-    this.cursor.show(hit.point, hit.normal, this.core.radius(), this.state.brushStrength, inverted);
+    this.cursor.show(hit.point, hit.normal, this.core.radius(), this.core.strength(), inverted);
   }
 }
 
@@ -304,15 +291,5 @@ function planeHit(ray, plane, facing) {
   return point ? { point, normal: facing } : null;
 }
 
-function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }
-function round(x, digits) { return Number(x.toFixed(digits)); }
 
-// The world size of one screen pixel at `point` (perspective: grows with the distance; orthographic:
-// the same everywhere).
-function pixelSizeAt(viewer, point) {
-  const camera = viewer.camera;
-  const height = viewer.renderer.domElement.clientHeight || 1;
-  if (camera.isOrthographicCamera) return (camera.top - camera.bottom) / camera.zoom / height;
-  const distance = camera.position.distanceTo(point);
-  return (2 * distance * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2)) / camera.zoom / height;
-}
+function clamp(x, lo, hi) { return Math.min(hi, Math.max(lo, x)); }

@@ -3,16 +3,20 @@
 // back to moving; the wheel scales. Not on the surface (or other buttons): the orbit controls act.
 // Radii: [ and ] resize the region of interest, { and } (with Shift) the handle; Shift+wheel too.
 //
-// Pointer events only record the wanted transform; frame() (called once per animation frame by the
-// app) sends it to the core: at most one wasm call per frame however many events arrive.
+// Pointer events only record the wanted transform; frame() (called once per animation frame by
+// AdaptiveSculptor) sends it to the core: at most one wasm call per frame however many events arrive.
+// Everything here is in the sculpted mesh's own coordinates (view.ray and view.viewPlane convert).
 import * as THREE from 'three';
-import { bindToolEvents, isTextInput } from './tool-events.js';
+import { CanvasTool, isTextInput } from './tool-events.js';
 
-export class GrabTool {
-  // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform) -> {timings}|undefined, end(),
-  //         radii(), scaleRadii(handleFactor, roiFactor), busy(), notify(message) }
-  constructor(viewer, core, keyTarget) {
-    this.viewer = viewer;
+export class GrabTool extends CanvasTool {
+  // view: { ray(clientX, clientY), viewDirection(), viewPlane(point), setOrbit(on), showGrab({center,
+  //         handleRadius, roiRadius, visible}), schedule() (a frame() is due) }
+  // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform) -> {timings}|undefined, end(), notify(message), radii(),
+  //         scaleRadii(handleFactor, roiFactor), busy() }
+  constructor(view, core) {
+    super();
+    this.view = view;
     this.core = core;
     this.grab = null;   // {center, plane, start, mode, translate, degrees, scale, modeX, ...}
     this.enabled = true; // false while a brush is the current tool (tool-palette.js)
@@ -20,13 +24,10 @@ export class GrabTool {
     this.hover = null;  // last pointer position for the hover preview
     this.hoverPending = false;
     this.hoverPoint = null;
-    this.pointerInside = false;
-    this.keyTarget = keyTarget;
-    this.unbind = bindToolEvents(this, viewer.renderer.domElement, keyTarget);
   }
 
-  dispose() {
-    this.unbind();
+  onDisconnect() {
+    this.hover = null;
   }
 
   get active() { return this.grab !== null; }
@@ -39,18 +40,21 @@ export class GrabTool {
 
   onPointerDown(e) {
     if (!this.enabled || e.button !== 0 || this.grab || this.core.busy()) return;
-    const ray = this.viewer.ray(e.clientX, e.clientY);
+    const ray = this.view.ray(e.clientX, e.clientY);
     const hit = this.core.pick(ray);
     if (!hit) return; // empty space: let OrbitControls rotate the view
     e.stopImmediatePropagation();
     e.preventDefault();
-    this.viewer.controls.enabled = false;
-    e.target.setPointerCapture(e.pointerId);
-    const normal = this.viewer.camera.getWorldDirection(new THREE.Vector3());
+    this.view.setOrbit(false);
+    try {
+      e.target.setPointerCapture(e.pointerId); // the drag continues outside the canvas
+    } catch {
+      // not a live pointer (a synthetic event): the drag still works inside the canvas
+    }
     this.grab = {
       pointerId: e.pointerId,
       center: hit.clone(),
-      plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit),
+      plane: this.view.viewPlane(hit),
       mode: 'translate',
       translate: new THREE.Vector3(),
       offset: new THREE.Vector3(), // translation frozen while rotating/scaling
@@ -72,6 +76,7 @@ export class GrabTool {
     if (!this.grab) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
+      if (this.enabled) this.view.schedule();
       return;
     }
     if (e.pointerId !== this.grab.pointerId) return;
@@ -84,7 +89,7 @@ export class GrabTool {
     const g = this.grab;
     const dx = g.x - g.modeX;
     if (g.mode === 'translate') {
-      const p = this.viewer.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
+      const p = this.view.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
       if (p) g.translate.copy(p).sub(g.center).sub(g.offset);
     } else if (g.mode === 'rotate') {
       g.degrees = g.modeStartValue + dx * 0.5;
@@ -92,6 +97,7 @@ export class GrabTool {
       g.scale = g.modeStartValue * Math.exp(dx / 200);
     }
     this.dirty = true;
+    this.view.schedule();
   }
 
   setMode(mode) {
@@ -104,7 +110,7 @@ export class GrabTool {
     g.modeStartValue = mode === 'rotate' ? g.degrees : mode === 'scale' ? g.scale : 0;
     if (mode === 'translate') {
       // Continue moving from where the handle is: the ray now hits the plane elsewhere.
-      const p = this.viewer.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
+      const p = this.view.ray(g.x, g.y).intersectPlane(g.plane, new THREE.Vector3());
       if (p) g.offset.copy(p).sub(g.center).sub(g.translate);
     }
   }
@@ -114,9 +120,10 @@ export class GrabTool {
     if (this.dirty) this.frame(); // the last motion still reaches the core
     this.grab = null;
     this.core.end();
-    this.viewer.controls.enabled = true;
+    this.view.setOrbit(true);
     this.hover = { x: e.clientX, y: e.clientY };
     this.hoverPending = true;
+    this.view.schedule();
   }
 
   onWheel(e) {
@@ -152,7 +159,7 @@ export class GrabTool {
   // The transform since grab begin, in the page API's terms.
   transform() {
     const g = this.grab;
-    const axis = this.viewer.camera.getWorldDirection(new THREE.Vector3()).negate();
+    const axis = this.view.viewDirection().negate();
     return { translate: g.translate.toArray(), rotate: { axis: axis.toArray(), degrees: g.degrees }, scale: g.scale };
   }
 
@@ -171,7 +178,7 @@ export class GrabTool {
       }
     } else if (this.enabled && this.hoverPending && this.hover && this.pointerInside && !this.core.busy()) {
       this.hoverPending = false;
-      this.hoverPoint = this.core.pick(this.viewer.ray(this.hover.x, this.hover.y));
+      this.hoverPoint = this.core.pick(this.view.ray(this.hover.x, this.hover.y));
       this.updateBrush();
     }
   }
@@ -180,10 +187,10 @@ export class GrabTool {
     const { handle, roi } = this.core.radii();
     if (this.grab) {
       const c = this.grab.center.clone().add(this.grab.translate);
-      this.viewer.setBrush({ center: c, handleRadius: handle, roiRadius: roi, visible: true });
+      this.view.showGrab({ center: c, handleRadius: handle, roiRadius: roi, visible: true });
     } else {
       const visible = !!(this.enabled && this.hover && this.hoverPoint);
-      this.viewer.setBrush({ center: this.hoverPoint || undefined, handleRadius: handle, roiRadius: roi, visible });
+      this.view.showGrab({ center: this.hoverPoint || undefined, handleRadius: handle, roiRadius: roi, visible });
     }
   }
 }

@@ -1,31 +1,36 @@
-// The three.js side of the core's RenderBuffers: a BufferGeometry (positions, normals, indices per
-// vertex/face SLOT) and a wireframe LineSegments geometry sharing its positions. apply() copies only
-// the dirty ranges the core reports out of wasm memory and marks them with addUpdateRange, so the
-// GPU upload follows the ROI, not the mesh; when the core's capacity grows, new attributes (a new
-// geometry) are made. Views into wasm memory are built from the reported pointers right here,
-// after the call that produced them: memory growth detaches every older view.
+// The three.js side of the core's RenderBuffers, written into a BufferGeometry that is not ours to
+// replace (the host's mesh.geometry): positions, normals and indices per vertex/face SLOT, and
+// optionally a wireframe LineSegments geometry sharing the positions. apply() copies only the dirty
+// ranges the core reports out of wasm memory and marks them with addUpdateRange, so the GPU upload
+// follows the brushed region, not the mesh. The core's buffers grow with headroom; when their
+// capacity changes the geometry keeps its identity and gets new attributes (its old GPU buffers
+// are released first through geometry.dispose(), which three.js allows on a geometry still in use).
+// Views into wasm memory are built from the reported pointers right here, after the call that
+// produced them: memory growth detaches every older view.
 import * as THREE from 'three';
 
 export class MeshBuffers {
-  constructor(Module) {
+  // geometry: the BufferGeometry to keep in step; lines: also keep a wireframe index (this.lines).
+  constructor(Module, geometry, { lines = false } = {}) {
     this.M = Module;
-    this.geometry = null;
-    this.lines = null;
+    this.geometry = geometry;
+    this.lines = lines ? new THREE.BufferGeometry() : null;
     this.vertexCapacity = 0;
     this.faceCapacity = 0;
     this.vertexCount = 0;
     this.faceCount = 0;
-    this.onGeometry = null; // (geometry, lineGeometry) when the geometries were replaced
   }
 
-  // ch: the object Session.changes()/grabDrag() returns. Returns true when anything changed.
+  get allocated() { return this.vertexCapacity > 0; }
+
+  // ch: the object Session.changes()/grabDrag()/brushStamp() returns. True when anything changed.
   apply(ch) {
     if (!ch) return false;
     const heap = this.M.HEAPU8.buffer;
     const pos = new Float32Array(heap, ch.positionsPtr, ch.vertexCount * 3);
     const nrm = new Float32Array(heap, ch.normalsPtr, ch.vertexCount * 3);
     const idx = new Uint32Array(heap, ch.indicesPtr, ch.faceCount * 3);
-    const fresh = !this.geometry || ch.reallocated ||
+    const fresh = !this.allocated || ch.reallocated ||
       ch.vertexCapacity !== this.vertexCapacity || ch.faceCapacity !== this.faceCapacity;
     if (fresh) this.allocate(ch.vertexCapacity, ch.faceCapacity);
     const vb = fresh ? 0 : ch.vertexBegin;
@@ -39,32 +44,35 @@ export class MeshBuffers {
     }
     if (fe > fb && (fresh || ch.indicesChanged)) {
       copyRange(g.index, idx, 3 * fb, 3 * fe, fresh);
-      this.writeLines(idx, fb, fe, fresh);
+      if (this.lines) this.writeLines(idx, fb, fe, fresh);
     }
     this.vertexCount = ch.vertexCount;
     this.faceCount = ch.faceCount;
     g.setDrawRange(0, 3 * ch.faceCount);
-    this.lines.setDrawRange(0, 6 * ch.faceCount);
-    if (fresh && this.onGeometry) this.onGeometry(this.geometry, this.lines);
+    if (this.lines) this.lines.setDrawRange(0, 6 * ch.faceCount);
     return fresh || ve > vb || fe > fb;
   }
 
+  // New attributes of the core's capacities, in the same geometry objects. Every other attribute
+  // (uv, color, ...) goes: remeshing changes the vertices, so they would no longer match.
   allocate(vertexCapacity, faceCapacity) {
-    const old = [this.geometry, this.lines];
-    const g = new THREE.BufferGeometry();
-    const position = new THREE.BufferAttribute(new Float32Array(3 * vertexCapacity), 3).setUsage(THREE.DynamicDrawUsage);
-    const normal = new THREE.BufferAttribute(new Float32Array(3 * vertexCapacity), 3).setUsage(THREE.DynamicDrawUsage);
+    const g = this.geometry;
+    g.dispose(); // frees the old GPU buffers; three.js uploads the new ones at the next render
+    for (const name of Object.keys(g.attributes)) g.deleteAttribute(name);
+    g.morphAttributes = {};
+    g.clearGroups();
+    const dynamic = (array, size) => new THREE.BufferAttribute(array, size).setUsage(THREE.DynamicDrawUsage);
+    const position = dynamic(new Float32Array(3 * vertexCapacity), 3);
     g.setAttribute('position', position);
-    g.setAttribute('normal', normal);
-    g.setIndex(new THREE.BufferAttribute(new Uint32Array(3 * faceCapacity), 1).setUsage(THREE.DynamicDrawUsage));
-    const lines = new THREE.BufferGeometry();
-    lines.setAttribute('position', position); // shared: a moved vertex moves its wire too
-    lines.setIndex(new THREE.BufferAttribute(new Uint32Array(6 * faceCapacity), 1).setUsage(THREE.DynamicDrawUsage));
-    this.geometry = g;
-    this.lines = lines;
+    g.setAttribute('normal', dynamic(new Float32Array(3 * vertexCapacity), 3));
+    g.setIndex(dynamic(new Uint32Array(3 * faceCapacity), 1));
+    if (this.lines) {
+      this.lines.dispose();
+      this.lines.setAttribute('position', position); // shared: a moved vertex moves its wire too
+      this.lines.setIndex(dynamic(new Uint32Array(6 * faceCapacity), 1));
+    }
     this.vertexCapacity = vertexCapacity;
     this.faceCapacity = faceCapacity;
-    for (const o of old) if (o) o.dispose();
   }
 
   // Three segments per face slot (each interior edge is drawn twice: a small price for updating the
@@ -81,20 +89,28 @@ export class MeshBuffers {
     attr.needsUpdate = true;
   }
 
-  // Axis-aligned box of the first vertexCount slots (after a load or a grab there is no garbage).
-  boundingBox() {
-    const box = new THREE.Box3();
-    if (!this.geometry) return box;
+  // Axis-aligned box of the first vertexCount slots (deleted slots keep their last position: the
+  // box may be a little larger than the live mesh until the core compacts it).
+  boundingBox(box = new THREE.Box3()) {
+    box.makeEmpty();
+    if (!this.allocated) return box;
     const p = this.geometry.attributes.position.array;
     const v = new THREE.Vector3();
     for (let i = 0; i < this.vertexCount; i++) box.expandByPoint(v.fromArray(p, 3 * i));
     return box;
   }
 
+  // The geometry's boundingBox/boundingSphere from the live slots (three.js would measure the
+  // whole capacity, unused zeros included), for the host's culling and raycasting.
+  updateBounds() {
+    const g = this.geometry;
+    g.boundingBox = this.boundingBox(g.boundingBox || new THREE.Box3());
+    g.boundingSphere = g.boundingBox.getBoundingSphere(g.boundingSphere || new THREE.Sphere());
+  }
+
+  // Only the wireframe geometry is ours; the surface geometry belongs to the caller.
   dispose() {
-    if (this.geometry) this.geometry.dispose();
     if (this.lines) this.lines.dispose();
-    this.geometry = this.lines = null;
   }
 }
 

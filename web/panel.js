@@ -1,7 +1,7 @@
 // The control panel (lil-gui): remeshing settings, grab radii, brush settings, display, whole-mesh remesh with
 // progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
 import GUI from 'lil-gui';
-import { SYMMETRY } from './brush-tool.js';
+import { SYMMETRY } from './settings.js';
 
 export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
 
@@ -35,9 +35,6 @@ export function createPanel(parent, state, actions) {
   sculpt.add(state, 'brushRadius', 0.5, 30, 0.1).name('radius (%)').onChange(() => actions.brush());
   sculpt.add(state, 'brushStrength', 0.05, 1, 0.01).name('strength').onChange(() => actions.brush());
   sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
-  // Detail in screen pixels (edges of that many pixels at the brush); 0: the remesh settings, relative to the
-  // object under the brush.
-  sculpt.add(state, 'detailPixels', 0, 40, 1).name('detail (px, 0: ε)').onChange(() => actions.brush());
 
   const view = gui.addFolder('Display');
   view.add(state, 'shading', ['matcap', 'standard']).name('shading').onChange(() => actions.display());

@@ -15,6 +15,7 @@
 // `adasculpt-error` carries {detail: Error} for a failed start, load or parameter. Removing the
 // element from the page disposes the app (wasm instance, GPU resources, listeners).
 import { createSculptApp } from './app.js';
+import { lengthFromText } from './settings.js';
 
 const PARAMS = {
   epsilon: 'epsilon', 'min-length': 'minLength', 'max-length': 'maxLength', features: 'features',
@@ -26,9 +27,7 @@ const RESTART = ['ui', 'wasm-url', 'autosave'];
 const ELEMENT_STYLE = ':where(adasculpt-viewer) { display: block; position: relative; height: 400px; }';
 
 function paramValue(name, text) {
-  const t = String(text).trim();
-  if (name === 'features') return Number(t);
-  return t.endsWith('%') ? t : Number(t);
+  return name === 'features' ? Number(String(text).trim()) : lengthFromText(text);
 }
 
 export class AdasculptViewerElement extends HTMLElement {

@@ -1,6 +1,7 @@
-// The scene: renderer, camera, OrbitControls, lights, the surface (matcap or standard material,
-// flat/smooth), its wireframe overlay, and the brush falloff drawn by the surface shader
-// (distance to the handle centre: no per-vertex work in JS). Renders on demand.
+// The app's scene: renderer, camera, OrbitControls, lights, the surface (matcap or standard
+// material, flat/smooth; its geometry is kept by the AdaptiveSculptor), its wireframe overlay, and
+// the Pull tool's falloff drawn by the surface shader (distance to the handle centre: no per-vertex
+// work in JS). Renders on demand.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -65,15 +66,12 @@ export function createViewer(root) {
   observer.observe(root);
   resize();
 
-  const raycaster = new THREE.Raycaster();
-  const ndc = new THREE.Vector2();
-
   return {
     renderer, scene, camera, controls, surface, wire, requestRender,
     get needsRender() { return needsRender; },
 
-    setGeometry(geometry, lineGeometry) {
-      surface.geometry = geometry;
+    setWireGeometry(lineGeometry) {
+      wire.geometry.dispose();
       wire.geometry = lineGeometry;
       requestRender();
     },
@@ -121,14 +119,6 @@ export function createViewer(root) {
       requestRender();
     },
 
-    // World-space ray through a client (CSS pixel) position.
-    ray(clientX, clientY) {
-      const r = renderer.domElement.getBoundingClientRect();
-      ndc.set(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
-      raycaster.setFromCamera(ndc, camera);
-      return raycaster.ray;
-    },
-
     precompile() {
       renderer.compileAsync(scene, camera).catch(() => {});
     },
@@ -140,6 +130,7 @@ export function createViewer(root) {
 
     dispose() {
       observer.disconnect();
+      surface.geometry.dispose();
       controls.dispose();
       for (const m of [matcap, standard, wireMaterial]) m.dispose();
       matcap.matcap.dispose();

@@ -1,7 +1,13 @@
-// Loading the WebAssembly core. The module is a classic (non-ES) MODULARIZE build that defines
-// the global factory createAdasculptModule; it finds adasculpt.wasm next to its own script URL.
-// index.html includes the script tag itself (so it downloads in parallel with the app); a host
-// page that only imports app.js gets the tag injected here, once.
+// Loading the WebAssembly core. The module is a classic (non-ES) MODULARIZE build that defines the
+// global factory createAdasculptModule. By default both files are found next to this package's
+// JavaScript with `new URL(..., import.meta.url)`, which bundlers (vite, rollup, webpack) follow:
+// they copy adasculpt.js and adasculpt.wasm into the host's build and rewrite the URLs. A page
+// that already has the script tag (index.html, for a download in parallel with the app) keeps it.
+// `wasmUrl` points elsewhere (a CDN folder holding both files): the .wasm is then looked up next
+// to that script.
+
+const DEFAULT_SCRIPT = new URL('../public/wasm/adasculpt.js', import.meta.url).href;
+const DEFAULT_WASM = new URL('../public/wasm/adasculpt.wasm', import.meta.url).href;
 
 let factoryPromise = null;
 
@@ -14,11 +20,20 @@ function loadFactory(scriptUrl) {
       const existing = document.querySelector('script[data-adasculpt-wasm]');
       const script = existing || document.createElement('script');
       const done = () => {
+        forget();
         if (typeof globalThis.createAdasculptModule === 'function') resolve(globalThis.createAdasculptModule);
         else reject(new Error(`${script.src} did not define createAdasculptModule`));
       };
-      script.addEventListener('load', done, { once: true });
-      script.addEventListener('error', () => reject(new Error(`could not load ${script.src}`)), { once: true });
+      const failed = () => {
+        forget();
+        reject(new Error(`could not load ${script.src}`));
+      };
+      const forget = () => {
+        script.removeEventListener('load', done);
+        script.removeEventListener('error', failed);
+      };
+      script.addEventListener('load', done);
+      script.addEventListener('error', failed);
       if (!existing) {
         script.src = scriptUrl;
         script.async = true;
@@ -31,9 +46,10 @@ function loadFactory(scriptUrl) {
   return factoryPromise;
 }
 
-// A fresh module instance (each app owns its own wasm memory; dropping it frees everything).
+// A fresh module instance (each sculptor owns its own wasm memory; dropping it frees everything).
 export async function instantiateCore(scriptUrl) {
-  const url = scriptUrl || new URL('wasm/adasculpt.js', document.baseURI).href;
+  const url = scriptUrl ? new URL(scriptUrl, document.baseURI).href : DEFAULT_SCRIPT;
   const factory = await loadFactory(url);
-  return factory({});
+  const wasm = scriptUrl ? new URL('adasculpt.wasm', url).href : DEFAULT_WASM;
+  return factory({ locateFile: (file) => (file.endsWith('.wasm') ? wasm : file) });
 }

@@ -1,5 +1,10 @@
 // embind bindings: Module.Session, a thin shell over sculpt::Session plus the RenderBuffers the
-// page draws from. Converts typed arrays, JSON strings and small objects; no logic of its own.
+// page draws from. Converts typed arrays and plain objects; no logic of its own.
+//
+// One convention for JavaScript: plain objects in and out with camelCase keys. The core speaks
+// nlohmann::json with snake_case keys (session files, the CLI's --json); to_js()/from_js() below
+// convert between the two, renaming keys (min_length <-> minLength). Session files themselves are a
+// file format shared with the CLI: replay() takes them as written (text or parsed object).
 //
 // Errors: a C++ exception is caught here, its message stored in a static slot, and the method
 // returns a neutral value; a JS wrapper installed on Module.Session.prototype (on first
@@ -19,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -30,6 +36,8 @@
 
 #include "geometry/quality.h"
 #include "mesh/build_from_triangles.h"
+#include "remesh/length_spec.h"
+#include "remesh/remesher.h"
 #include "sculpt/render_buffers.h"
 #include "sculpt/session.h"
 #include "sculpt/session_file.h"
@@ -113,6 +121,100 @@ io::Format parse_format(std::string f) {
   throw std::invalid_argument("unknown export format '" + f + "' (use obj, stl, ply or off)");
 }
 
+// "min_angle_deg" -> "minAngleDeg"; "minLength" -> "min_length".
+std::string camel_case(const std::string& k) {
+  std::string out;
+  bool upper = false;
+  for (char c : k) {
+    if (c == '_') {
+      upper = !out.empty();
+      continue;
+    }
+    out += upper ? char(std::toupper(static_cast<unsigned char>(c))) : c;
+    upper = false;
+  }
+  return out;
+}
+std::string snake_case(const std::string& k) {
+  std::string out;
+  for (char c : k) {
+    if (std::isupper(static_cast<unsigned char>(c))) {
+      out += '_';
+      out += char(std::tolower(static_cast<unsigned char>(c)));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The core's JSON as a plain JS value, object keys in camelCase.
+val to_js(const nlohmann::json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::object: {
+      val o = val::object();
+      for (auto it = j.begin(); it != j.end(); ++it) o.set(camel_case(it.key()), to_js(it.value()));
+      return o;
+    }
+    case nlohmann::json::value_t::array: {
+      val a = val::array();
+      for (const auto& x : j) a.call<void>("push", to_js(x));
+      return a;
+    }
+    case nlohmann::json::value_t::string: return val(j.get<std::string>());
+    case nlohmann::json::value_t::boolean: return val(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+    case nlohmann::json::value_t::number_unsigned:
+    case nlohmann::json::value_t::number_float: return val(j.get<double>());
+    default: return val::null();
+  }
+}
+
+// A plain JS value as the core's JSON; object keys to snake_case when `snake`. Throws on values
+// JSON has no place for (functions, symbols, cycles are not followed: depth-limited).
+nlohmann::json from_js(const val& v, bool snake, int depth = 0) {
+  if (depth > 64) throw std::invalid_argument("object nested too deeply");
+  const std::string type = v.typeOf().as<std::string>();
+  if (type == "undefined" || v.isNull()) return nullptr;
+  if (type == "boolean") return v.as<bool>();
+  if (type == "number") {  // integral numbers stay integers (a session file's "version": 1, counts)
+    const double d = v.as<double>();
+    if (std::floor(d) == d && std::fabs(d) < 9e15) return static_cast<std::int64_t>(d);
+    return d;
+  }
+  if (type == "string") return v.as<std::string>();
+  if (type != "object") throw std::invalid_argument("expected plain values, got a " + type);
+  if (val::global("Array").call<bool>("isArray", v)) {
+    nlohmann::json a = nlohmann::json::array();
+    const size_t n = v["length"].as<size_t>();
+    for (size_t i = 0; i < n; ++i) a.push_back(from_js(v[i], snake, depth + 1));
+    return a;
+  }
+  if (val::global("ArrayBuffer").call<bool>("isView", v)) {
+    nlohmann::json a = nlohmann::json::array();
+    for (double x : copy_typed_array<double>(v, "Float64Array")) a.push_back(x);
+    return a;
+  }
+  nlohmann::json o = nlohmann::json::object();
+  const val keys = val::global("Object").call<val>("keys", v);
+  const size_t n = keys["length"].as<size_t>();
+  for (size_t i = 0; i < n; ++i) {
+    const std::string k = keys[i].as<std::string>();
+    const val x = v[k];
+    if (x.isUndefined()) continue;
+    o[snake ? snake_case(k) : k] = from_js(x, snake, depth + 1);
+  }
+  return o;
+}
+
+// A plain object argument (not null, not an array), else std::invalid_argument naming the method.
+nlohmann::json object_arg(const val& v, const char* method, bool snake) {
+  const bool ok = v.typeOf().as<std::string>() == "object" && !v.isNull() &&
+                  !val::global("Array").call<bool>("isArray", v);
+  if (!ok) throw std::invalid_argument(std::string(method) + ": expected a plain object");
+  return from_js(v, snake);
+}
+
 }  // namespace
 
 class SessionHandle {
@@ -144,11 +246,13 @@ class SessionHandle {
     });
   }
 
-  void set_settings(const std::string& json) {
-    guarded_void([&] { session_.set_settings(nlohmann::json::parse(json)); });
+  // {epsilon, minLength, maxLength, features}: numbers are absolute, "0.05%" strings percent of the
+  // diagonal; keys not given keep their value. settings() answers in absolute lengths plus diagonal.
+  void set_settings(const val& settings) {
+    guarded_void([&] { session_.set_settings(object_arg(settings, "setSettings", true)); });
   }
-  std::string settings() const {
-    return guarded(std::string(), [&] { return session_.settings().dump(); });
+  val settings() const {
+    return guarded(val::null(), [&] { return to_js(session_.settings()); });
   }
 
   val pick(double ox, double oy, double oz, double dx, double dy, double dz) const {
@@ -197,17 +301,12 @@ class SessionHandle {
   bool grabbing() const { return session_.grabbing(); }
 
   // A brush stroke (sculpt/brush.h): brushBegin(settings), one brushStamp(samples) per animation
-  // frame, brushEnd(); the stroke is one undo step. Settings: a JSON string or a plain object
+  // frame, brushEnd(); the stroke is one undo step. Settings: a plain object
   // {tool, radius, strength, spacing, symmetry, invert} (absolute radius), checked like a session
   // file's brush step.
   void brush_begin(const val& settings) {
     guarded_void([&] {
-      const std::string type = settings.typeOf().as<std::string>();
-      if (type != "string" && (type != "object" || settings.isNull()))
-        throw std::invalid_argument("brushBegin: expected the settings as an object or a JSON string");
-      const std::string text =
-          type == "string" ? settings.as<std::string>() : val::global("JSON").call<std::string>("stringify", settings);
-      session_.brush_begin(sculpt::parse_brush_settings(nlohmann::json::parse(text)));
+      session_.brush_begin(sculpt::parse_brush_settings(object_arg(settings, "brushBegin", true)));
       sync(false);
     });
   }
@@ -271,17 +370,23 @@ class SessionHandle {
   bool can_undo() const { return session_.can_undo(); }
   bool can_redo() const { return session_.can_redo(); }
 
-  std::string replay(const std::string& json) {
-    return guarded(std::string(), [&] {
-      std::string out = session_.replay(nlohmann::json::parse(json)).dump();
+  // A session file (sculpt/session_file.h) as its text or as the parsed object, keys as in the file;
+  // returns the report (`adasculpt replay --json`'s object, keys in camelCase).
+  val replay(const val& file) {
+    return guarded(val::null(), [&] {
+      const nlohmann::json j = file.typeOf().as<std::string>() == "string"
+                                   ? nlohmann::json::parse(file.as<std::string>())
+                                   : object_arg(file, "replay", false);
+      val out = to_js(session_.replay(j));
       sync(true);
       return out;
     });
   }
 
-  // Quality of the whole mesh (O(n): not for every frame) and the last frame's timings.
-  std::string stats() const {
-    return guarded(std::string(), [&] {
+  // Quality of the whole mesh (O(n): not for every frame: minAngleDeg, meanMinAngleDeg, vertices,
+  // faces, valenceHistogram, ...), the last frame's timings and the history flags.
+  val stats() const {
+    return guarded(val::null(), [&] {
       nlohmann::json j = nlohmann::json::object();
       if (session_.has_mesh()) j = geometry::to_json(session_.quality());
       const sculpt::FrameTimings& t = session_.last_frame();
@@ -290,7 +395,7 @@ class SessionHandle {
       j["can_undo"] = session_.can_undo();
       j["can_redo"] = session_.can_redo();
       if (!session_.remesh_warning().empty()) j["warning"] = session_.remesh_warning();  // last remesh hit its limit
-      return j.dump();
+      return to_js(j);
     });
   }
 
@@ -385,7 +490,19 @@ class SessionHandle {
   double buffers_ms_ = 0;  // time of the last render-buffer update (part of the frame, after the core)
 };
 
+// Module.defaultSettings(): what a new session starts with, {epsilon: "0.05%", minLength, maxLength,
+// features}, from the core's constants (the web app shows these before a mesh is loaded).
+val default_settings() {
+  val o = val::object();
+  o.set("epsilon", remesh::percent_text(remesh::kDefaultEpsilonPct));
+  o.set("minLength", remesh::percent_text(remesh::kDefaultMinLengthPct));
+  o.set("maxLength", remesh::percent_text(remesh::kDefaultMaxLengthPct));
+  o.set("features", 0);
+  return o;
+}
+
 EMSCRIPTEN_BINDINGS(adasculpt) {
+  emscripten::function("defaultSettings", &default_settings);
   emscripten::class_<SessionHandle>("Session")
       .constructor<>()
       .function("hasMesh", &SessionHandle::has_mesh)

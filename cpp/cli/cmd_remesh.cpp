@@ -21,7 +21,10 @@ namespace {
 struct RemeshArgs {
   std::string input, output;
   bool uniform = false;
-  std::string epsilon = "0.05%", min_length = "0.2%", max_length = "5%", length = "1%";
+  std::string epsilon = remesh::percent_text(remesh::kDefaultEpsilonPct),
+              min_length = remesh::percent_text(remesh::kDefaultMinLengthPct),
+              max_length = remesh::percent_text(remesh::kDefaultMaxLengthPct),
+              length = remesh::percent_text(remesh::kDefaultTargetLengthPct);
   int iterations = 5;
   bool no_projection = false;
   double features = 0;

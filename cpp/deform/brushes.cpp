@@ -25,7 +25,9 @@ constexpr double kPinch = 0.25;
 // Bound on the inflate brush's normal smoothing passes (BrushDeformer::smooth_normals).
 constexpr int kMaxNormalPasses = 24;
 
-const char* const kNames[] = {"draw", "inflate", "smooth", "flatten", "pinch", "crease", "grab"};
+// BrushTool::Grab is the snake hook; "grab" (its name until the Pull tool's handle grab took the
+// word) is still read as a deprecated alias, so older session files replay.
+const char* const kNames[] = {"draw", "inflate", "smooth", "flatten", "pinch", "crease", "snakeHook"};
 
 // Twice the area-weighted normal of the faces around v (not normalised).
 Vec3 fan_normal(const SurfaceMesh& mesh, Vertex v) {
@@ -54,12 +56,13 @@ Vec3 normalized_or_zero(const Vec3& v) {
 }
 }  // namespace
 
-const char* brush_tool_list() { return "draw, inflate, smooth, flatten, pinch, crease, grab"; }
+const char* brush_tool_list() { return "draw, inflate, smooth, flatten, pinch, crease, snakeHook"; }
 const char* brush_tool_name(BrushTool tool) { return kNames[static_cast<int>(tool)]; }
 
 std::optional<BrushTool> parse_brush_tool(const std::string& name) {
   for (int i = 0; i < 7; ++i)
     if (name == kNames[i]) return static_cast<BrushTool>(i);
+  if (name == "grab") return BrushTool::Grab;  // deprecated alias of "snakeHook"
   return std::nullopt;
 }
 

@@ -20,7 +20,8 @@ using mesh::Vertex;
 
 enum class BrushTool { Draw, Inflate, Smooth, Flatten, Pinch, Crease, Grab };
 
-// "draw, inflate, smooth, flatten, pinch, crease, grab" (for error messages).
+// "draw, inflate, smooth, flatten, pinch, crease, snakeHook" (for error messages); parse_brush_tool
+// also reads "grab", the snake hook's deprecated name.
 const char* brush_tool_list();
 const char* brush_tool_name(BrushTool tool);
 std::optional<BrushTool> parse_brush_tool(const std::string& name);

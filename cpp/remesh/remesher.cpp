@@ -30,10 +30,10 @@ double bounding_box_diagonal(const SurfaceMesh& mesh) { return geometry::boundin
 RemeshOptions default_options_for(const SurfaceMesh& mesh) {
   const double d = bounding_box_diagonal(mesh);
   RemeshOptions o;
-  o.epsilon = 0.0005 * d;
-  o.min_length = 0.002 * d;
-  o.max_length = 0.05 * d;
-  o.target_length = 0.01 * d;
+  o.epsilon = kDefaultEpsilonPct * 0.01 * d;
+  o.min_length = kDefaultMinLengthPct * 0.01 * d;
+  o.max_length = kDefaultMaxLengthPct * 0.01 * d;
+  o.target_length = kDefaultTargetLengthPct * 0.01 * d;
   return o;
 }
 

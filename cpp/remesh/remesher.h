@@ -37,8 +37,13 @@ struct RemeshOptions {
   static constexpr size_t kDefaultMaxVertices = 2'000'000;
 };
 
-// Defaults of the command line, as fractions of the bounding-box diagonal: epsilon 0.05%,
-// min 0.2%, max 5%, uniform length 1%.
+// The one place the default lengths live, in percent of the bounding-box diagonal: the command
+// line, a new sculpt::Session and (through the wasm module's defaultSettings()) the web app use them.
+inline constexpr double kDefaultEpsilonPct = 0.05;
+inline constexpr double kDefaultMinLengthPct = 0.2;
+inline constexpr double kDefaultMaxLengthPct = 5;
+inline constexpr double kDefaultTargetLengthPct = 1;  // uniform mode
+// The defaults above as absolute lengths for this mesh.
 RemeshOptions default_options_for(const SurfaceMesh& mesh);
 double bounding_box_diagonal(const SurfaceMesh& mesh);
 

@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "remesh/length_spec.h"
+
 namespace adasculpt::sculpt {
 
 namespace {
@@ -48,12 +50,12 @@ LengthSetting length(const json& j, const std::string& context, const std::strin
     s.value = j.get<double>();
   } else if (j.is_string()) {
     const std::string t = j.get<std::string>();
-    if (t.size() < 2 || t.back() != '%') fail(context, field, what);
-    const std::string num = t.substr(0, t.size() - 1);
-    char* end = nullptr;
-    s.value = std::strtod(num.c_str(), &end);
-    if (end == num.c_str() || *end != '\0') fail(context, field, what);
-    s.percent = true;
+    if (t.empty() || t.back() != '%') fail(context, field, what);  // a string is a percentage
+    try {
+      s = remesh::parse_length_spec(t, field);
+    } catch (const std::invalid_argument&) {
+      fail(context, field, what);
+    }
   } else {
     fail(context, field, what);
   }

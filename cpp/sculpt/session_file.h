@@ -31,16 +31,13 @@
 
 #include "deform/handle_transform.h"
 #include "mesh/types.h"
+#include "remesh/length_spec.h"
 #include "sculpt/brush.h"
 
 namespace adasculpt::sculpt {
 
 // A length setting as written: absolute, or percent of the bounding-box diagonal.
-struct LengthSetting {
-  double value = 0;
-  bool percent = false;
-  double resolve(double diagonal) const { return percent ? value * 0.01 * diagonal : value; }
-};
+using LengthSetting = remesh::LengthSpec;
 
 // The keys present in a "settings" object (absent keys stay empty).
 struct SettingsPatch {

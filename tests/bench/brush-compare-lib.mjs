@@ -357,13 +357,13 @@ export function runOurs(M, mesh, strokes, { length, epsilon }) {
     s.replay(empty);
     const emptyMs = performance.now() - t0;
     t0 = performance.now();
-    const rep = JSON.parse(s.replay(full));
+    const rep = s.replay(full);
     const ms = performance.now() - t0 - emptyMs;
     return {
       mesh: { positions: Float64Array.from(s.positions()), indices: liveTriangles(s.indices()) },
       stamps,
       msPerStamp: ms / stamps,
-      stampMedian: rep.frame_ms_median,
+      stampMedian: rep.frameMsMedian,
       report: rep,
     };
   } finally {

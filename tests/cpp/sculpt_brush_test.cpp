@@ -492,7 +492,7 @@ TEST(SculptBrush, SessionFileStrokesParseReplayAndNameBadFields) {
     return b;
   };
   EXPECT_EQ(error(with("tool", "sand")),
-            "step 2 (brush): 'tool' must be one of draw, inflate, smooth, flatten, pinch, crease, grab");
+            "step 2 (brush): 'tool' must be one of draw, inflate, smooth, flatten, pinch, crease, snakeHook");
   EXPECT_EQ(error(with("radius", -1)), "step 2 (brush): 'radius' must be a positive number");
   EXPECT_EQ(error(with("path", nlohmann::json::array())),
             "step 2 (brush): 'path' must be a non-empty array of [x,y,z] points");

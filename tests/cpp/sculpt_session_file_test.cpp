@@ -106,7 +106,7 @@ TEST(SculptSessionFile, BrushSettingsAloneAndInAStep) {
   EXPECT_EQ(sculpt::parse_brush_settings(with_path, "brush: ", {"path"}).tool, deform::BrushTool::Crease);
   EXPECT_EQ(error({{"radius", 0.1}}), "brush: 'tool' is missing");
   EXPECT_EQ(error({{"tool", "hammer"}, {"radius", 0.1}}),
-            "brush: 'tool' must be one of draw, inflate, smooth, flatten, pinch, crease, grab");
+            "brush: 'tool' must be one of draw, inflate, smooth, flatten, pinch, crease, snakeHook");
   EXPECT_EQ(error({{"tool", "draw"}, {"radius", 0.1}, {"symmetry", "w"}}), "brush: 'symmetry' must be one of x, y, z, none");
 
   json step = settings;

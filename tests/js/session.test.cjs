@@ -35,7 +35,7 @@ function withSession(fn) {
   }
 }
 
-const quality = (s) => JSON.parse(s.stats());
+const quality = (s) => s.stats();
 const exported = (s) => Buffer.from(s.exportMesh('off'));
 
 test('load from bytes and from arrays; render buffers match the mesh', { skip }, () => {
@@ -76,18 +76,42 @@ test('load from bytes and from arrays; render buffers match the mesh', { skip },
 test('settings round-trip, absolute and percent', { skip }, () => {
   withSession((s) => {
     s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
-    s.setSettings(JSON.stringify({ epsilon: '0.1%', max_length: 0.2, features: 30 }));
-    const st = JSON.parse(s.settings());
+    s.setSettings({ epsilon: '0.1%', maxLength: 0.2, features: 30 });
+    const st = s.settings();
     assert.ok(Math.abs(st.epsilon - 0.001 * st.diagonal) < 1e-12);
-    assert.strictEqual(st.max_length, 0.2);
+    assert.strictEqual(st.maxLength, 0.2);
     assert.strictEqual(st.features, 30);
   });
+});
+
+// One convention: plain objects with camelCase keys in and out, no JSON strings; a session file
+// replays the same from its text or its object (integral numbers stay integers on the way in).
+test('plain objects in and out: defaults, settings, stats, replay from an object or its text', { skip }, () => {
+  assert.deepStrictEqual(M.defaultSettings(), { epsilon: '0.05%', minLength: '0.2%', maxLength: '5%', features: 0 });
+  const fromObject = withSession((s) => {
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    const st = s.settings();
+    assert.deepStrictEqual(Object.keys(st).sort(), ['diagonal', 'epsilon', 'features', 'maxLength', 'minLength']);
+    assert.ok(Math.abs(st.epsilon - 0.0005 * st.diagonal) < 1e-12, 'the default epsilon is 0.05 % of the diagonal');
+    const q = s.stats();
+    for (const k of ['minAngleDeg', 'meanMinAngleDeg', 'valenceHistogram', 'lastFrame', 'canUndo']) assert.ok(k in q, k);
+    assert.ok(!Object.keys(q).some((k) => k.includes('_')), 'no snake_case keys');
+    assert.throws(() => s.replay({ version: 2, steps: [] }), /'version' must be 1/);
+    return s.replay(PULL);
+  });
+  const fromText = withSession((s) => {
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    return s.replay(JSON.stringify(PULL));
+  });
+  assert.ok(fromObject.frames > 0 && Number.isFinite(fromObject.frameMsMedian));
+  assert.strictEqual(fromObject.vertices, fromText.vertices);
+  assert.strictEqual(fromObject.minAngleDeg, fromText.minAngleDeg);
 });
 
 test('remesh, grab/drag/end, undo and redo restore exact states', { skip }, () => {
   withSession((s) => {
     s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
-    s.setSettings(JSON.stringify({ max_length: '1%' }));
+    s.setSettings({ maxLength: '1%' });
     const original = exported(s);
     s.remesh(2);
     const remeshed = exported(s);
@@ -112,8 +136,8 @@ test('remesh, grab/drag/end, undo and redo restore exact states', { skip }, () =
     const top = Math.max(...Array.from(s.positions()).filter((_, i) => i % 3 === 2));
     assert.ok(top > 1.3, `the top was pulled up (max z ${top})`);
     const q = quality(s);
-    assert.ok(q.min_angle_deg > 5, `min angle ${q.min_angle_deg}`);
-    assert.ok(q.mean_min_angle_deg > 35, `mean min angle ${q.mean_min_angle_deg}`);
+    assert.ok(q.minAngleDeg > 5, `min angle ${q.minAngleDeg}`);
+    assert.ok(q.meanMinAngleDeg > 35, `mean min angle ${q.meanMinAngleDeg}`);
 
     assert.strictEqual(s.undo(), true);
     assert.deepStrictEqual(exported(s), remeshed);
@@ -143,8 +167,8 @@ test('C++ errors arrive as Error with their message; the mesh stays', { skip }, 
     assert.throws(() => s.loadBytes(new Uint8Array(bad), 'broken.off'), (e) => e instanceof Error && /broken\.off/.test(e.message) && /vertex|index/i.test(e.message));
     assert.throws(() => s.loadBytes(new Uint8Array([1, 2, 3]), 'x.obj'), Error);
     assert.deepStrictEqual(exported(s), before, 'a bad file keeps the current mesh');
-    assert.throws(() => s.setSettings('{"bogus": 1}'), /bogus/);
-    assert.throws(() => s.setSettings('not json'), Error);
+    assert.throws(() => s.setSettings({ bogus: 1 }), /bogus/);
+    assert.throws(() => s.setSettings('{"epsilon": 1}'), /expected a plain object/); // no JSON strings
     assert.throws(() => s.exportMesh('xyz'), /unknown export format 'xyz'/);
     assert.throws(() => s.grabBegin(0, 0, 1, -1, 0.5), Error);
     assert.throws(() => s.replay(JSON.stringify({ version: 1, steps: [{ grab: { center: [0, 0, 1] } }] })), /step/);
@@ -177,7 +201,7 @@ test('no leaks across 50 load/replay cycles', { skip }, () => {
   withSession((s) => {
     for (let i = 0; i < 50; i++) {
       s.loadBytes(i % 2 ? fandisk : new Uint8Array(sphereObj), i % 2 ? 'fandisk.off' : 'sphere.obj');
-      const report = JSON.parse(s.replay(session));
+      const report = s.replay(session);
       assert.ok(report.vertices > 0);
       try { s.loadBytes(new Uint8Array([0]), 'bad.off'); } catch { /* errors must not leak either */ }
       if (i === 9) sizeAfterWarmup = M.HEAPU8.length;
@@ -199,12 +223,12 @@ function parity(input, name) {
     const native = JSON.parse(execFileSync(cli, ['replay', input, sessionPath, path.join(dir, 'out.off'), '--json'], { encoding: 'utf8' }));
     const wasm = withSession((s) => {
       s.loadBytes(new Uint8Array(fs.readFileSync(input)), name);
-      return JSON.parse(s.replay(JSON.stringify(PULL)));
+      return s.replay(PULL);
     });
     assert.strictEqual(wasm.frames, native.frames, `${name}: frames`);
     assert.strictEqual(wasm.vertices, native.vertices, `${name}: vertices`);
     assert.strictEqual(wasm.faces, native.faces, `${name}: faces`);
-    assert.ok(Math.abs(wasm.min_angle_deg - native.min_angle_deg) < 1e-6, `${name}: min angle`);
+    assert.ok(Math.abs(wasm.minAngleDeg - native.min_angle_deg) < 1e-6, `${name}: min angle`);
   } finally {
     fs.rmSync(dir, { recursive: true, force: true });
   }
