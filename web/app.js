@@ -239,11 +239,14 @@ export async function createSculptApp(container, options = {}) {
     setTool(name) { return sculptor.setTool(name); },
 
     async remesh({ iterations = state.iterations } = {}) {
+      // The panel's button is disabled while it runs, which drops the focus: the keys stay with the app.
+      const hadFocus = root.contains(document.activeElement);
       try {
         await sculptor.remesh({ iterations, onProgress: (p) => { if (panel) panel.setProgress(p); } });
       } finally {
         if (!disposed) {
           if (panel) panel.setProgress(null);
+          if (hadFocus && !root.contains(document.activeElement)) root.focus({ preventScroll: true });
           refreshQuality();
           autosave.changed();
         }

@@ -334,7 +334,7 @@ function makeMatcap({ base, cool: coolTint, rim: rimK, spec: specK, shine }) {
 
 // A faint unit square (scaled and turned by setMirror) with a brighter outline: the mirror plane.
 function makeMirrorPlane() {
-  const material = new THREE.MeshBasicMaterial({ color: 0x7fd4ff, transparent: true, opacity: 0.12, side: THREE.DoubleSide, depthWrite: false });
+  const material = new THREE.MeshBasicMaterial({ color: 0x7fd4ff, transparent: true, opacity: 0.16, side: THREE.DoubleSide, depthWrite: false });
   const plane = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), material);
   const edges = new THREE.LineSegments(new THREE.EdgesGeometry(plane.geometry),
     new THREE.LineBasicMaterial({ color: 0x7fd4ff, transparent: true, opacity: 0.5 }));
