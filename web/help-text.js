@@ -10,5 +10,5 @@ export function helpText(tool) {
   const what = tool === 'pull'
     ? 'Pull: drag on the model · during the drag R rotate, S scale, wheel scale · [ ] ROI · { } handle'
     : `${name}: stroke on the model · Ctrl/Alt invert · [ ] or Shift+wheel radius · - = strength`;
-  return `${what} · ${VIEW_HELP}`;
+  return `${what} · 1 Pull, 2–8 brushes · ${VIEW_HELP}`;
 }
