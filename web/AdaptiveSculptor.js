@@ -281,26 +281,24 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
   }
 
   // Whole-mesh adaptive remeshing: one core call of `iterations` (one undo step, the CLI's
-  // result), or with onProgress one iteration per animation frame, each reported and each one
-  // undo step. Resolves with the mesh's counts.
+  // `remesh --iterations` result exactly: the remesher keeps its reference surface across the
+  // iterations). With onProgress, {done: 0, total} is reported and one animation frame passes (the
+  // page can show it) before the call, {done: total, total} after it. Resolves with the mesh's counts.
   async remesh({ iterations = 5, onProgress } = {}) {
     if (this.busy) throw new Error('a remesh is already running');
     if (this._stroke) throw new Error('remesh: a stroke is under way');
     if (!(Number.isInteger(iterations) && iterations >= 1)) throw new Error('remesh: iterations must be a positive integer');
     this._busy = { done: 0, total: iterations };
     try {
-      if (!onProgress) {
+      if (onProgress) {
+        onProgress({ ...this._busy });
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+      }
+      if (!this._disposed) {
         this.session.remesh(iterations);
         this._sync();
-      } else {
-        for (let i = 0; i < iterations && !this._disposed; i++) {
-          onProgress({ ...this._busy });
-          await new Promise((resolve) => requestAnimationFrame(resolve));
-          if (this._disposed) break;
-          this.session.remesh(1);
-          this._sync();
-          this._busy.done = i + 1;
-        }
+        this._busy.done = iterations;
+        if (onProgress) onProgress({ ...this._busy });
       }
     } finally {
       this._busy = null;

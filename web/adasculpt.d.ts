@@ -262,7 +262,7 @@ export declare class AdaptiveSculptor extends EventDispatcher<SculptorEventMap> 
   /**
    * Whole-mesh adaptive remeshing with projection onto the current surface. Without `onProgress`: one
    * core call of `iterations` (default 5), one undo step, the CLI's `remesh --iterations` result.
-   * With `onProgress`: one iteration per animation frame, each reported and each one undo step.
+   * With `onProgress`: reported before (`done: 0`, one animation frame passes) and after the same single call.
    */
   remesh(options?: { iterations?: number; onProgress?: (p: { done: number; total: number }) => void }): Promise<MeshCounts>;
   /** Runs a session file on the current mesh. */
@@ -374,7 +374,24 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
   /** The current tool (palette, keys 1–8). */
   readonly tool: ToolName;
   setTool(name: ToolName): boolean;
-  /** Whole-mesh remeshing, one iteration per animation frame with a progress display, each one undo step. */
+  /**
+   * The camera. `frame()`: the model fills the free part of the canvas (F, Home); `set(name)`: an axis
+   * view, framed (Shift+1–6, numpad 1/3/7 and Ctrl+numpad); `orthographic(on?)`: switches (O, numpad 5)
+   * and returns whether it is. Zoom limits follow the model's size (set by each frame/set/load).
+   */
+  readonly view: {
+    frame(): void;
+    set(name: 'front' | 'back' | 'left' | 'right' | 'top' | 'bottom'): void;
+    orthographic(on?: boolean): boolean;
+    state(): {
+      position: number[]; target: number[]; up: number[]; distance: number; zoom: number; orthographic: boolean;
+      minDistance: number; maxDistance: number; minZoom: number; maxZoom: number; modelRadius: number;
+    };
+  };
+  /** Looks (panel: Display): matcap ('clay', 'red wax', 'jade', 'blue steel', 'chalk'), material, flat shading, wireframe overlay. Returns the current ones. */
+  display(d?: { matcap?: string; shading?: 'matcap' | 'standard'; flat?: boolean; wireframe?: boolean }):
+    { matcap: string; shading: 'matcap' | 'standard'; flat: boolean; wireframe: boolean };
+  /** Whole-mesh remeshing: one core call of `iterations` (the CLI's result, one undo step) with a progress display. */
   remesh(options?: { iterations?: number }): Promise<SculptStats>;
   undo(): boolean;
   redo(): boolean;

@@ -11,12 +11,14 @@ import { createStatsOverlay } from './stats-overlay.js';
 import { createFileInput, createToaster, download } from './file-io.js';
 import { STYLE } from './style.js';
 import { createAutosave, noAutosave } from './autosave.js';
+import { createViewControls } from './view-controls.js';
+import { helpText } from './help-text.js';
 import { checkMemory, isOutOfMemory, outOfMemoryMessage } from './memory-estimate.js';
 import { TOOL_DEFAULTS, lengthToPercent } from './settings.js';
 import * as THREE from 'three';
 
 // The app's own preferences on top of the shared defaults (web/settings.js, the core's).
-const APP_STATE = { iterations: 5, shading: 'matcap', flat: false, wireframe: false };
+const APP_STATE = { iterations: 5, shading: 'matcap', matcap: 'clay', flat: false, wireframe: false };
 // setParams keys of the app that are the sculptor's under another name (kept for scripts).
 const ALIASES = { brushRadius: 'radius', brushStrength: 'strength' };
 
@@ -69,6 +71,7 @@ export async function createSculptApp(container, options = {}) {
     },
     restored: (record) => {
       sourceName = record.name;
+      showSource();
       sculptor.resync();
       readSettings();
       viewer.fitView(sculptor.buffers.boundingBox());
@@ -141,9 +144,12 @@ export async function createSculptApp(container, options = {}) {
       throw isOutOfMemory(e) ? new Error(outOfMemoryMessage(name, session.memoryBytes())) : e;
     }
     sourceName = name;
+    showSource();
     readSettings();
+    refreshQuality(); // the stats box gets its size before the model is framed beside it
+    leftInset();
     viewer.fitView(sculptor.buffers.boundingBox());
-    refreshQuality();
+    showToolState();
     return { vertices: quality.vertices, faces: quality.faces };
   }
 
@@ -162,6 +168,17 @@ export async function createSculptApp(container, options = {}) {
       }
       refreshQuality();
     }, 250);
+  }
+
+  // The panel's model list and the export names follow the last opened file or sample.
+  function showSource() {
+    const sample = Object.keys(SAMPLES).find((k) => SAMPLES[k].split('/').pop() === sourceName);
+    state.sample = sample || sourceName;
+    if (panel) panel.setSample(state.sample);
+  }
+  function exportName(fmt) {
+    const base = String(sourceName).replace(/\.[^.]*$/, '') || 'mesh';
+    return `adasculpt-${base}.${fmt}`;
   }
 
   function afterWholeMeshChange() {
@@ -211,14 +228,26 @@ export async function createSculptApp(container, options = {}) {
     get grab() { return grab; },
     get brush() { return brush; },
     get tool() { return sculptor.tool; },
+    // frame(), set('front'|'back'|'left'|'right'|'top'|'bottom'), orthographic(bool), state()
+    get view() { return views.view; },
+    // Looks: {matcap, shading: 'matcap'|'standard', flat, wireframe}; returns the current ones.
+    display(d = {}) {
+      for (const k of ['matcap', 'shading', 'flat', 'wireframe']) if (k in d) state[k] = d[k];
+      applyDisplay();
+      if (panel) panel.refresh();
+      return { matcap: state.matcap, shading: state.shading, flat: state.flat, wireframe: state.wireframe };
+    },
     setTool(name) { return sculptor.setTool(name); },
 
     async remesh({ iterations = state.iterations } = {}) {
+      // The panel's button is disabled while it runs, which drops the focus: the keys stay with the app.
+      const hadFocus = root.contains(document.activeElement);
       try {
         await sculptor.remesh({ iterations, onProgress: (p) => { if (panel) panel.setProgress(p); } });
       } finally {
         if (!disposed) {
           if (panel) panel.setProgress(null);
+          if (hadFocus && !root.contains(document.activeElement)) root.focus({ preventScroll: true });
           refreshQuality();
           autosave.changed();
         }
@@ -325,17 +354,21 @@ export async function createSculptApp(container, options = {}) {
   };
   const fileInput = createFileInput(root, openFile);
   let panel = null;
+  let views = null;
   let stats = null;
   let help = null;
   if (opts.ui) {
     stats = createStatsOverlay(root);
     panel = createPanel(root, state, {
+      matcaps: viewer.matcaps,
+      get view() { return views?.view; },
       loadSample: (name) => {
+        if (!SAMPLES[name]) return; // the opened file's entry: nothing to reload
         state.sample = name;
         api.load(SAMPLES[name]).catch((e) => toaster.show(`Could not load ${name}: ${e.message}`, 'error'));
       },
       open: () => fileInput.open(),
-      exportMesh: (fmt) => guard(() => download(session.exportMesh(fmt), `adasculpt-${state.sample}.${fmt}`)),
+      exportMesh: (fmt) => guard(() => download(session.exportMesh(fmt), exportName(fmt))),
       settings: () => guard(() => api.setParams({
         epsilon: `${state.epsilon}%`, minLength: `${state.minLength}%`, maxLength: `${state.maxLength}%`, features: state.features,
       })),
@@ -351,7 +384,9 @@ export async function createSculptApp(container, options = {}) {
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
     });
-    if (root.clientWidth < 720) panel.gui.close(); // small embeds: the panel starts as a title bar
+    // Small views: the panel starts as a title bar; short ones open only the Brush folder.
+    if (root.clientWidth < 720) panel.gui.close();
+    if (root.clientHeight < 560) panel.compact();
     const inset = () => {
       const px = panel.gui._closed ? 0 : panel.gui.domElement.offsetWidth + 10;
       viewer.setInsetRight(px);
@@ -361,13 +396,34 @@ export async function createSculptApp(container, options = {}) {
     inset();
     help = document.createElement('div');
     help.className = 'adasculpt-help';
-    help.textContent = '1 pull: drag on the model, R rotate · S scale · wheel: scale · [ ] ROI · { } handle · ' +
-      '2–8 brushes: stroke on the model, Ctrl/Alt invert · [ ] radius · - = strength · ' +
-      'drag elsewhere: orbit · Ctrl+Z / Ctrl+Shift+Z';
     root.appendChild(help);
   }
   const palette = new ToolPalette(opts.ui ? root : null, keyTarget, sculptor);
+  views = createViewControls({
+    viewer, keyTarget, parent: palette.el, bounds: () => sculptor.buffers.boundingBox(),
+    onCamera: (camera) => { sculptor.camera = camera; },
+  });
+  // The model is framed in the canvas right of the tool buttons and below the stats (viewer insets).
+  const leftInset = () => {
+    const r = root.getBoundingClientRect();
+    const right = palette.el ? palette.el.getBoundingClientRect().right - r.left : 0;
+    viewer.setInsetLeft(right > 0 ? right + 6 : 0);
+    const bottom = stats ? stats.element.getBoundingClientRect().bottom - r.top : 0;
+    viewer.setInsetTop(bottom > 0 ? bottom + 4 : 0);
+  };
+  leftInset();
+  function showToolState() {
+    if (help) help.textContent = helpText(sculptor.tool);
+    const p = sculptor.params;
+    const brushTool = sculptor.tool !== 'pull';
+    viewer.setMirror(brushTool && p.symmetry && p.symmetry !== 'off' ? p.symmetry : null, sculptor.buffers.boundingBox());
+  }
+  sculptor.addEventListener('tool', showToolState);
+  sculptor.addEventListener('params', showToolState);
+  sculptor.addEventListener('end', showToolState);
+  showToolState();
   function applyDisplay() {
+    viewer.setMatcap(state.matcap);
     viewer.setShading({ mode: state.shading, flat: state.flat });
     viewer.setWireframe(state.wireframe);
   }
@@ -410,6 +466,7 @@ export async function createSculptApp(container, options = {}) {
     cancelAnimationFrame(raf);
     autosave.dispose();
     keyTarget.removeEventListener('keydown', onKey);
+    views.dispose();
     palette.dispose();
     sculptor.dispose();
     fileInput.dispose();

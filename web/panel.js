@@ -12,7 +12,7 @@ export function createPanel(parent, state, actions) {
 
   const files = gui.addFolder('Model');
   const ui = { sample: state.sample || 'sphere', format: 'obj' };
-  files.add(ui, 'sample', Object.keys(SAMPLES)).name('sample').onChange((v) => actions.loadSample(v));
+  let sampleCtl = files.add(ui, 'sample', Object.keys(SAMPLES)).name('model').onChange((v) => actions.loadSample(v));
   files.add({ open: () => actions.open() }, 'open').name('open file… (obj stl ply off)');
   files.add(ui, 'format', ['obj', 'stl', 'ply', 'off']).name('export format');
   files.add({ save: () => actions.exportMesh(ui.format) }, 'save').name('export / download');
@@ -37,9 +37,16 @@ export function createPanel(parent, state, actions) {
   sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
 
   const view = gui.addFolder('Display');
-  view.add(state, 'shading', ['matcap', 'standard']).name('shading').onChange(() => actions.display());
+  view.add(state, 'matcap', actions.matcaps).name('matcap').onChange(() => actions.display());
+  view.add(state, 'shading', ['matcap', 'standard']).name('material').onChange(() => actions.display());
   view.add(state, 'flat').name('flat shading').onChange(() => actions.display());
-  view.add(state, 'wireframe').name('wireframe').onChange(() => actions.display());
+  view.add(state, 'wireframe').name('wireframe overlay').onChange(() => actions.display());
+  view.add({ frame: () => actions.view.frame() }, 'frame').name('frame model (F)');
+  const axis = { view: 'front' };
+  view.add(axis, 'view', ['front', 'back', 'left', 'right', 'top', 'bottom']).name('axis view (Shift+1–6)')
+    .onChange((v) => actions.view.set(v));
+  const ortho = { on: false };
+  view.add(ortho, 'on').name('orthographic (O)').onChange((v) => actions.view.orthographic(v));
 
   const history = gui.addFolder('History');
   const undo = history.add({ undo: () => actions.undo() }, 'undo').name('undo (Ctrl+Z)');
@@ -48,13 +55,28 @@ export function createPanel(parent, state, actions) {
   return {
     gui,
     refresh() {
+      if (actions.view) ortho.on = actions.view.orthographic();
       for (const c of gui.controllersRecursive()) c.updateDisplay();
+    },
+    // Short views: only the Brush folder stays open (lil-gui scrolls the rest).
+    compact() {
+      for (const f of [files, remesh, brush, view, history]) f.close();
+      gui.domElement.classList.add('compact');
     },
     setHistory(canUndo, canRedo) {
       undo.disable(!canUndo);
       redo.disable(!canRedo);
     },
-    setSample(name) { ui.sample = name; this.refresh(); },
+    // The model list shows an opened file's name beside the samples.
+    setSample(name) {
+      const names = Object.keys(SAMPLES);
+      if (!names.includes(name)) names.push(name);
+      if (names.length !== sampleCtl._values.length) {
+        sampleCtl = sampleCtl.options(names).name('model').onChange((v) => actions.loadSample(v));
+      }
+      ui.sample = name;
+      sampleCtl.updateDisplay();
+    },
     // null: idle; {done, total}: running.
     setProgress(p) {
       remeshButton.name(p ? `remeshing… ${p.done}/${p.total}` : 'remesh whole mesh');

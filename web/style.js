@@ -18,6 +18,8 @@ export const STYLE = `
 .adasculpt-tools button:hover { background: rgba(45, 50, 62, 0.9); }
 .adasculpt-tools button[aria-pressed="true"] { background: #d9822b; border-color: #ffb066; color: #fff; }
 .adasculpt-tools .key { display: inline-block; width: 12px; margin-right: 6px; opacity: 0.6; }
+.adasculpt-view { display: flex; flex-direction: column; gap: 2px; margin-top: 8px; }
+.adasculpt-root .adasculpt-panel.compact { --widget-height: 16px; --spacing: 2px; --padding: 2px; font-size: 10px; }
 .adasculpt-file { display: none; }
 .adasculpt-drop { position: absolute; inset: 12px; display: none; align-items: center; justify-content: center;
   border: 2px dashed #7fb2ff; border-radius: 12px; background: rgba(30, 60, 110, 0.35); font-size: 18px;

@@ -27,7 +27,8 @@ export class ToolPalette {
     }
     this.keyTarget = keyTarget;
     this.onKey = (e) => {
-      if (e.ctrlKey || e.metaKey || e.altKey || isTextInput(e.target)) return;
+      // The numpad's digits are view keys (web/view-controls.js), not tools.
+      if (e.ctrlKey || e.metaKey || e.altKey || e.code?.startsWith('Numpad') || isTextInput(e.target)) return;
       const t = TOOLS.find((x) => x.key === e.key);
       if (t && sculptor.setTool(t.name)) e.preventDefault();
     };

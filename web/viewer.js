@@ -17,8 +17,10 @@ export function createViewer(root) {
 
   const scene = new THREE.Scene();
   scene.background = makeBackground();
-  const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
-  camera.position.set(0, 0, 5);
+  const perspective = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+  perspective.position.set(0, 0, 5);
+  const ortho = new THREE.OrthographicCamera(-1, 1, 1, -1, 0.01, 1000);
+  let camera = perspective; // the active one (view-controls.js switches)
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.enableDamping = false;
 
@@ -33,7 +35,8 @@ export function createViewer(root) {
     uBrushRadii: { value: new THREE.Vector2(0.1, 0.3) },
     uBrushOn: { value: 0 },
   };
-  const matcap = new THREE.MeshMatcapMaterial({ matcap: makeMatcap(), polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
+  const matcaps = Object.fromEntries(Object.entries(MATCAPS).map(([k, spec]) => [k, makeMatcap(spec)]));
+  const matcap = new THREE.MeshMatcapMaterial({ matcap: matcaps.clay, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
   const standard = new THREE.MeshStandardMaterial({ color: 0xc9a58f, roughness: 0.55, metalness: 0.0, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
   for (const m of [matcap, standard]) addBrushFalloff(m, brush);
   const wireMaterial = new THREE.LineBasicMaterial({ color: 0x1b1d22, transparent: true, opacity: 0.45 });
@@ -44,6 +47,8 @@ export function createViewer(root) {
   wire.frustumCulled = false;
   wire.visible = false;
   scene.add(surface, wire);
+  const mirror = makeMirrorPlane();
+  scene.add(mirror);
 
   let needsRender = true;
   const requestRender = () => { needsRender = true; };
@@ -51,23 +56,51 @@ export function createViewer(root) {
 
   // A panel over the right edge hides part of the canvas: shift the projection centre into the
   // free part (the canvas still fills the container, so nothing jumps when the panel closes).
+  // The same for the tool buttons (and stats) on the left edge.
   let insetRight = 0;
+  let insetLeft = 0;
+  let insetTop = 0; // the stats box
+  const topOf = (h) => Math.min(insetTop, h / 4);
+  let orthoHalfHeight = 1; // the orthographic frustum's half height at zoom 1
+  const insets = (w) => {
+    const r = Math.min(insetRight, w / 2);
+    return [Math.min(insetLeft, (w - r) / 3), r];
+  };
   const resize = () => {
     const w = Math.max(1, root.clientWidth), h = Math.max(1, root.clientHeight);
     renderer.setSize(w, h, false);
-    camera.aspect = w / h;
-    const inset = Math.min(insetRight, w / 2);
-    if (inset > 0) camera.setViewOffset(w, h, inset / 2, 0, w, h);
-    else camera.clearViewOffset();
-    camera.updateProjectionMatrix();
+    perspective.aspect = w / h;
+    Object.assign(ortho, { left: -orthoHalfHeight * w / h, right: orthoHalfHeight * w / h, top: orthoHalfHeight, bottom: -orthoHalfHeight });
+    const [l, r] = insets(w);
+    for (const c of [perspective, ortho]) {
+      const t = topOf(h);
+      if (l > 0 || r > 0 || t > 0) c.setViewOffset(w, h, (r - l) / 2, -t / 2, w, h);
+      else c.clearViewOffset();
+      c.updateProjectionMatrix();
+    }
     requestRender();
   };
   const observer = new ResizeObserver(resize);
   observer.observe(root);
   resize();
 
+  // Keeps near/far proportional to the distance, so zooming in close never clips the surface.
+  controls.addEventListener('change', () => {
+    const d = camera.position.distanceTo(controls.target);
+    const near = Math.max(d / 100, 1e-6), far = d * 100 + modelRadius * 4;
+    if (Math.abs(camera.near - near) > near * 1e-3 || Math.abs(camera.far - far) > far * 1e-3) {
+      camera.near = near;
+      camera.far = far;
+      camera.updateProjectionMatrix();
+    }
+  });
+  let modelRadius = 1;
+
   return {
-    renderer, scene, camera, controls, surface, wire, requestRender,
+    renderer, scene, controls, surface, wire, mirror, requestRender, matcaps: Object.keys(MATCAPS),
+    get camera() { return camera; },
+    get orthographic() { return camera === ortho; },
+    get modelRadius() { return modelRadius; },
     get needsRender() { return needsRender; },
 
     setWireGeometry(lineGeometry) {
@@ -80,24 +113,99 @@ export function createViewer(root) {
       insetRight = px;
       resize();
     },
+    setInsetLeft(px) {
+      insetLeft = px;
+      resize();
+    },
+    setInsetTop(px) {
+      insetTop = px;
+      resize();
+    },
 
     // Frames the box: centre as orbit target, distance so that its bounding sphere fits the free
-    // part of the canvas (left of the inset).
-    fitView(box) {
+    // part of the canvas (between the insets), seen from `dir` (default: the current direction, or
+    // the 3/4 view when the camera sits on the target). Sets the zoom limits from the model's size:
+    // perspective from 1.05 radii of the target (the camera stays outside the model's bounding
+    // sphere around a centred target: the view never goes empty) to 12 framing distances;
+    // orthographic from 1/12 of the framed size to 20 times closer.
+    fitView(box, dir) {
       if (box.isEmpty()) return;
       const sphere = box.getBoundingSphere(new THREE.Sphere());
       const w = Math.max(1, root.clientWidth), h = Math.max(1, root.clientHeight);
-      const freeAspect = Math.max(0.2, (w - Math.min(insetRight, w / 2)) / h);
-      const halfV = THREE.MathUtils.degToRad(camera.fov) / 2;
+      const [l, r] = insets(w);
+      const t = topOf(h);
+      const freeAspect = Math.max(0.2, (w - l - r) / (h - t));
+      const halfFull = THREE.MathUtils.degToRad(perspective.fov) / 2;
+      const halfV = Math.atan(Math.tan(halfFull) * (h - t) / h);
       const halfH = Math.atan(Math.tan(halfV) * freeAspect);
       const dist = (sphere.radius / Math.sin(Math.min(halfV, halfH))) * 1.08;
-      const dir = new THREE.Vector3(0.35, 0.25, 1).normalize();
+      let d = dir ? dir.clone() : camera.position.clone().sub(controls.target);
+      if (d.lengthSq() < 1e-20 || !dir && this._firstFit !== false) d = new THREE.Vector3(0.35, 0.25, 1);
+      this._firstFit = false;
+      d.normalize();
+      modelRadius = sphere.radius;
       controls.target.copy(sphere.center);
-      camera.position.copy(sphere.center).addScaledVector(dir, dist);
-      camera.near = dist / 100;
-      camera.far = dist * 100;
-      camera.updateProjectionMatrix();
+      camera.position.copy(sphere.center).addScaledVector(d, dist);
+      orthoHalfHeight = dist * Math.tan(halfFull);
+      ortho.zoom = 1;
+      controls.minDistance = sphere.radius * 1.05;
+      controls.maxDistance = dist * 12;
+      controls.minZoom = 1 / 12;
+      controls.maxZoom = 20;
+      resize();
       controls.update();
+      requestRender();
+    },
+
+    // Perspective <-> orthographic with the same view: the orthographic frustum as high as the
+    // perspective one at the target, and back at the distance that shows the same height.
+    setOrthographic(on) {
+      if (on === (camera === ortho)) return;
+      const halfV = THREE.MathUtils.degToRad(perspective.fov) / 2;
+      const offset = camera.position.clone().sub(controls.target);
+      const next = on ? ortho : perspective;
+      if (on) {
+        orthoHalfHeight = offset.length() * Math.tan(halfV);
+        ortho.zoom = 1;
+      } else {
+        const shown = orthoHalfHeight / ortho.zoom;
+        const len = THREE.MathUtils.clamp(shown / Math.tan(halfV), controls.minDistance, controls.maxDistance);
+        offset.setLength(len);
+      }
+      next.position.copy(controls.target).add(offset);
+      next.quaternion.copy(camera.quaternion);
+      next.up.copy(camera.up);
+      const light = camera.children.slice();
+      for (const c of light) next.add(c);
+      scene.remove(camera);
+      scene.add(next);
+      camera = next;
+      controls.object = next;
+      resize();
+      controls.update();
+      requestRender();
+      this.onCameraChange?.(next);
+    },
+
+    // The symmetric brush's mirror plane (axis 'x'|'y'|'z', null: hidden), sized to the box.
+    setMirror(axis, box) {
+      mirror.visible = !!axis && !box.isEmpty();
+      if (mirror.visible) {
+        const size = box.getSize(new THREE.Vector3()).multiplyScalar(1.15);
+        const c = box.getCenter(new THREE.Vector3());
+        mirror.position.set(axis === 'x' ? 0 : c.x, axis === 'y' ? 0 : c.y, axis === 'z' ? 0 : c.z);
+        mirror.rotation.set(0, 0, 0);
+        if (axis === 'x') { mirror.rotation.y = Math.PI / 2; mirror.scale.set(size.z, size.y, 1); }
+        if (axis === 'y') { mirror.rotation.x = Math.PI / 2; mirror.scale.set(size.x, size.z, 1); }
+        if (axis === 'z') mirror.scale.set(size.x, size.y, 1);
+      }
+      requestRender();
+    },
+
+    setMatcap(name) {
+      if (!matcaps[name]) throw new Error(`unknown matcap '${name}'; one of ${Object.keys(MATCAPS).join(', ')}`);
+      matcap.matcap = matcaps[name];
+      matcap.needsUpdate = true;
       requestRender();
     },
 
@@ -133,7 +241,11 @@ export function createViewer(root) {
       surface.geometry.dispose();
       controls.dispose();
       for (const m of [matcap, standard, wireMaterial]) m.dispose();
-      matcap.matcap.dispose();
+      for (const t of Object.values(matcaps)) t.dispose();
+      mirror.geometry.dispose();
+      for (const c of mirror.children) c.geometry.dispose();
+      mirror.material.dispose();
+      mirror.children[0].material.dispose();
       scene.background.dispose();
       renderer.dispose();
       renderer.forceContextLoss(); // browsers keep only a few live WebGL contexts per page
@@ -175,9 +287,18 @@ if (uBrushOn > 0.5) {
 
 function rgb(c) { return `${c.r.toFixed(3)}, ${c.g.toFixed(3)}, ${c.b.toFixed(3)}`; }
 
-// A clay matcap painted once into a canvas (no image file to fetch): soft key light from the upper
-// left, a cool fill from below, a gentle rim and a small highlight.
-function makeMatcap() {
+// The matcaps, painted into canvases (no image file to fetch): base colour, fill tint, rim and
+// highlight strength and sharpness.
+const MATCAPS = {
+  clay: { base: [0.80, 0.64, 0.55], cool: [0.55, 0.62, 0.8], rim: 0.25, spec: 0.35, shine: 40 },
+  'red wax': { base: [0.78, 0.22, 0.18], cool: [0.5, 0.3, 0.5], rim: 0.2, spec: 0.6, shine: 60 },
+  jade: { base: [0.36, 0.66, 0.5], cool: [0.3, 0.5, 0.8], rim: 0.35, spec: 0.45, shine: 25 },
+  'blue steel': { base: [0.42, 0.5, 0.66], cool: [0.7, 0.75, 0.9], rim: 0.5, spec: 0.9, shine: 90 },
+  chalk: { base: [0.9, 0.9, 0.88], cool: [0.6, 0.6, 0.7], rim: 0.1, spec: 0.05, shine: 8 },
+};
+
+// One matcap: soft key light from the upper left, a tinted fill from below, a rim and a highlight.
+function makeMatcap({ base, cool: coolTint, rim: rimK, spec: specK, shine }) {
   const size = 256;
   const canvas = document.createElement('canvas');
   canvas.width = canvas.height = size;
@@ -186,7 +307,6 @@ function makeMatcap() {
   const L = new THREE.Vector3(-0.45, 0.55, 0.7).normalize();
   const F = new THREE.Vector3(0.3, -0.8, 0.5).normalize();
   const H = L.clone().add(new THREE.Vector3(0, 0, 1)).normalize(); // Blinn half vector, view along +z
-  const base = [0.80, 0.64, 0.55];
   const n = new THREE.Vector3();
   for (let y = 0; y < size; y++) {
     for (let x = 0; x < size; x++) {
@@ -198,10 +318,9 @@ function makeMatcap() {
       const diff = Math.max(0, n.dot(L));
       const fill = Math.max(0, n.dot(F));
       const rim = Math.pow(1 - n.z, 3);
-      const spec = Math.pow(Math.max(0, n.dot(H)), 40) * 0.35;
+      const spec = Math.pow(Math.max(0, n.dot(H)), shine) * specK;
       for (let k = 0; k < 3; k++) {
-        const cool = [0.55, 0.62, 0.8][k];
-        const v = base[k] * (0.18 + 0.85 * diff) + cool * 0.22 * fill + 0.25 * rim + spec;
+        const v = base[k] * (0.18 + 0.85 * diff) + coolTint[k] * 0.22 * fill + rimK * rim + spec;
         img.data[o + k] = Math.min(255, Math.round(255 * Math.pow(Math.min(v, 1), 1 / 1.1)));
       }
       img.data[o + 3] = 255;
@@ -211,6 +330,19 @@ function makeMatcap() {
   const tex = new THREE.CanvasTexture(canvas);
   tex.colorSpace = THREE.SRGBColorSpace;
   return tex;
+}
+
+// A faint unit square (scaled and turned by setMirror) with a brighter outline: the mirror plane.
+function makeMirrorPlane() {
+  const material = new THREE.MeshBasicMaterial({ color: 0x7fd4ff, transparent: true, opacity: 0.16, side: THREE.DoubleSide, depthWrite: false });
+  const plane = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), material);
+  const edges = new THREE.LineSegments(new THREE.EdgesGeometry(plane.geometry),
+    new THREE.LineBasicMaterial({ color: 0x7fd4ff, transparent: true, opacity: 0.5 }));
+  plane.add(edges);
+  plane.visible = false;
+  plane.renderOrder = 2;
+  plane.frustumCulled = false;
+  return plane;
 }
 
 // A quiet vertical gradient behind the model.
