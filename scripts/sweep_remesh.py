@@ -438,7 +438,7 @@ SAMPLE_MESHES = ["repo/eight.off", "repo/fandisk.off", "gen/fan_bar.off", "gen/t
 KNOWN_OPEN = [
     ("new crossings", r"gen/(thin_plate|sliver_cylinder)\.off", r".*"),
     ("hausdorff", r"gen/(thin_plate|sliver_cylinder)\.off", r".*"),
-    ("hausdorff", r"gen/fan_bar\.off|repo/fandisk\.off|cgal/(elephant-with-holes|pinion_small)\.off", r"eps0\.5-"),
+    ("hausdorff", r"gen/fan_bar\.off|repo/fandisk\.off|cgal/(elephant-with-holes|pinion_small)\.off", r"eps(0\.5|1)-"),
 ]
 
 
