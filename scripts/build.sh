@@ -5,6 +5,7 @@
 # build/wasm-debug (-sASSERTIONS=2 -g). Override the root with ADASCULPT_BUILD_ROOT (e.g. build/infra) to keep
 # a private set of build dirs; the wasm builds publish public/wasm/adasculpt.{js,wasm} unless
 # ADASCULPT_PUBLISH_WASM=OFF. Parallelism: ADASCULPT_JOBS (default 2 = this machine's cores).
+# ccache is used for the native and ASan builds when installed (ADASCULPT_CCACHE=OFF turns it off).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,11 +15,17 @@ PUBLISH=${ADASCULPT_PUBLISH_WASM:-ON}
 # Debian's emscripten finds acorn (used by every optimised link) only through NODE_PATH.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 mkdir -p "$ROOT"
+# ccache, when installed, makes rebuilds in several worktrees cheap (paths relative to the checkout).
+LAUNCHER=()
+if command -v ccache >/dev/null 2>&1 && [ "${ADASCULPT_CCACHE:-ON}" = ON ]; then
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 
 # Configure every time (well under a second when nothing changed) so cache options always match the request.
 configure_native() {  # dir, extra cmake args...
   local dir=$1; shift
-  cmake -S . -B "$dir" -G Ninja "$@" >"$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; return 1; }
+  cmake -S . -B "$dir" -G Ninja "${LAUNCHER[@]}" "$@" >"$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; return 1; }
 }
 
 build_native() {
