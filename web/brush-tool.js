@@ -14,6 +14,11 @@ import { BrushCursor } from './brush-cursor.js';
 import { raycastSurface } from './surface-raycast.js';
 import { CanvasTool, isTextInput } from './tool-events.js';
 import { checkSymmetry } from './settings.js';
+import { LazyPointer } from './lazy-pointer.js';
+
+// A finger on the model starts a stroke only once it moved this far (CSS pixels) with no second
+// finger down: a pinch or a two-finger orbit whose first finger lands on the model is not a stroke.
+const TOUCH_SLOP_PX = 6;
 
 // The tool palette: the paper's handle grab (web/grab-tool.js) and the core's seven brushes.
 // `name` is what setTool takes and, for brushes, the core's tool name. ('grab' is not a tool name:
@@ -46,7 +51,8 @@ const RADIUS_FACTOR = 1.15;
 // radius (absolute), strength, symmetry} from the current settings.
 export function createBrushApi({ session, stroke, defaults }) {
   const api = {
-    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing}; missing ones from the current ones.
+    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing, falloff, detail (an
+    // absolute edge length; 0: the remesh settings)}; missing ones from the current ones.
     begin(settings = {}) {
       const s = coreSettings(settings, defaults());
       stroke.begin(s.tool, () => session.brushBegin(s));
@@ -95,13 +101,16 @@ function coreSettings(s, d) {
     strength: s.strength ?? d.strength,
     symmetry: symmetry === 'off' ? 'none' : symmetry,
     ...(s.invert !== undefined ? { invert: s.invert } : {}),
-    ...(s.spacing !== undefined ? { spacing: s.spacing } : {}),
+    spacing: s.spacing ?? d.spacing,
+    falloff: s.falloff ?? d.falloff,
+    detail: s.detail ?? d.detail,
   };
 }
 
 export class BrushTool extends CanvasTool {
   // view: as GrabTool's, plus cursorParent (the sculpted mesh) and changed() (redraw).
-  // core: { begin({invert}) -> bool (false: did not start), stamp(Float64Array), end(), busy(),
+  // core: { begin({invert, point}) -> bool (false: did not start; point: the surface under the press, for
+  //         the detail in screen pixels), stamp(Float64Array), end(), busy(), stabilizer() (pixels, 0: off),
   //         radius() (absolute), scaleRadius(factor), strength(), addStrength(delta), tool(),
   //         geometry() (the drawn BufferGeometry) }
   constructor(view, core) {
@@ -114,6 +123,9 @@ export class BrushTool extends CanvasTool {
     this.hoverPending = false;
     this.hoverHit = null;
     this.modifier = false;   // Ctrl/Alt held: the cursor previews the inverted brush
+    this.touches = new Set(); // touch pointers down on the canvas
+    this.touchPending = null; // a finger on the model that has not moved yet: {pointerId, x, y, hit, target}
+    this.lastSamples = [];    // the last stroke's samples as sent (screen x, y), for scripts and tests
     this.cursor = new BrushCursor(view.cursorParent, view.changed);
   }
 
@@ -137,19 +149,29 @@ export class BrushTool extends CanvasTool {
   }
 
   onPointerDown(e) {
+    if (e.pointerType === 'touch') {
+      this.onTouchDown(e);
+      return;
+    }
     if (!this.enabled || e.button !== 0 || this.stroke || this.core.busy()) return;
     const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
     if (!hit) return; // empty space: let OrbitControls rotate the view
     e.stopImmediatePropagation();
     e.preventDefault();
+    this.beginStroke(e, hit);
+  }
+
+  // A mouse or pen press on the surface, or a finger once it moved (onTouchMoved).
+  beginStroke(e, hit) {
     const inverted = e.ctrlKey || e.altKey;
-    if (!this.core.begin({ invert: inverted })) return;
+    if (!this.core.begin({ invert: inverted, point: hit.point })) return;
     this.view.setOrbit(false);
     try {
       e.target.setPointerCapture(e.pointerId); // strokes continue outside the canvas
     } catch {
       // not a live pointer (a synthetic event): the stroke still works inside the canvas
     }
+    const stabilizer = this.core.stabilizer();
     this.stroke = {
       pointerId: e.pointerId,
       pending: [sample(e)],
@@ -158,8 +180,48 @@ export class BrushTool extends CanvasTool {
       facing: this.view.viewDirection().negate(),
       inverted,
       hit,
+      lazy: stabilizer > 0 ? new LazyPointer(e.clientX, e.clientY) : null,
+      stabilizer,
     };
+    this.lastSamples = [[e.clientX, e.clientY]];
     this.updateCursor();
+  }
+
+  // Touch: one finger on the model sculpts, two fingers orbit and pinch-zoom (OrbitControls, which
+  // must see every finger's pointerdown to track the gesture, so touches are never swallowed here).
+  // While a finger rests on the model, OrbitControls' one-finger orbit is held off; the stroke starts
+  // when it moves, unless a second finger came first.
+  onTouchDown(e) {
+    this.touches.add(e.pointerId);
+    if (this.touches.size > 1) {
+      this.touchPending = null;
+      if (this.stroke) this.finishStroke(e); // a second finger ends the stroke; the gesture is the view's
+      return;
+    }
+    if (!this.enabled || this.stroke || this.core.busy()) return;
+    const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
+    if (!hit) return; // off the model: one finger orbits
+    this.view.holdTouchOrbit(true);
+    this.touchPending = { pointerId: e.pointerId, x: e.clientX, y: e.clientY, hit };
+  }
+
+  onTouchMoved(e) {
+    const p = this.touchPending;
+    if (!p || e.pointerId !== p.pointerId || Math.hypot(e.clientX - p.x, e.clientY - p.y) < TOUCH_SLOP_PX) return;
+    this.touchPending = null;
+    const down = { clientX: p.x, clientY: p.y, pointerId: p.pointerId, pointerType: 'touch', pressure: 1,
+      ctrlKey: false, altKey: false, target: e.target };
+    this.beginStroke(down, p.hit);
+  }
+
+  onTouchUp(e) {
+    this.touches.delete(e.pointerId);
+    const p = this.touchPending;
+    if (p && p.pointerId === e.pointerId) {
+      this.touchPending = null;
+      if (e.type === 'pointerup') this.beginStroke(e, p.hit); // a tap on the model: one dab (not a cancel)
+    }
+    if (this.touches.size === 0) this.view.holdTouchOrbit(false);
   }
 
   onPointerLeave() {
@@ -170,6 +232,7 @@ export class BrushTool extends CanvasTool {
   onPointerMove(e) {
     this.modifier = e.ctrlKey || e.altKey;
     if (!this.enabled) return;
+    if (this.touchPending) this.onTouchMoved(e);
     if (!this.stroke) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
@@ -178,12 +241,27 @@ export class BrushTool extends CanvasTool {
     }
     if (e.pointerId !== this.stroke.pointerId) return;
     const events = typeof e.getCoalescedEvents === 'function' ? e.getCoalescedEvents() : [];
-    for (const ev of events.length ? events : [e]) this.stroke.pending.push(sample(ev));
+    const s = this.stroke;
+    for (const ev of events.length ? events : [e]) {
+      const q = sample(ev);
+      if (s.lazy) { // the stabiliser: the brush trails the pointer on its string
+        if (!s.lazy.follow(q.x, q.y, s.stabilizer)) continue;
+        q.x = s.lazy.x;
+        q.y = s.lazy.y;
+      }
+      s.pending.push(q);
+      this.lastSamples.push([q.x, q.y]);
+    }
     this.view.schedule();
   }
 
   onPointerUp(e) {
+    if (e.pointerType === 'touch') this.onTouchUp(e);
     if (!this.stroke || e.pointerId !== this.stroke.pointerId) return;
+    this.finishStroke(e);
+  }
+
+  finishStroke(e) {
     if (this.stroke.pending.length) this.flush(); // the last motion still reaches the core
     this.stroke = null;
     this.core.end();
