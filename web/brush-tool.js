@@ -124,7 +124,7 @@ export class BrushTool extends CanvasTool {
     this.hoverHit = null;
     this.modifier = false;   // Ctrl/Alt held: the cursor previews the inverted brush
     this.touches = new Set(); // touch pointers down on the canvas
-    this.touchPending = null; // a finger on the model that has not moved yet: {pointerId, x, y, hit, target}
+    this.touchPending = null; // a finger on the model that has not moved yet: {pointerId, x, y, hit}
     this.lastSamples = [];    // the last stroke's samples as sent (screen x, y), for scripts and tests
     this.cursor = new BrushCursor(view.cursorParent, view.changed);
   }
@@ -192,6 +192,8 @@ export class BrushTool extends CanvasTool {
   // While a finger rests on the model, OrbitControls' one-finger orbit is held off; the stroke starts
   // when it moves, unless a second finger came first.
   onTouchDown(e) {
+    // The first finger of a new touch: fingers lifted outside the canvas (no pointerup here) are gone.
+    if (e.isPrimary) this.touches.clear();
     this.touches.add(e.pointerId);
     if (this.touches.size > 1) {
       this.touchPending = null;
