@@ -2,20 +2,12 @@
 // remeshDetail), the calls web/AdaptiveSculptor.js makes.
 const test = require('node:test');
 const assert = require('node:assert');
-const { skip, sphereObj, loadModule } = require('./wasm-module.cjs');
+const { skip, loadModule, withSphere: withSphereOf } = require('./wasm-module.cjs');
 
 let Module = null;
 test.before(async () => { Module = await loadModule(); });
 
-function withSphere(fn) {
-  const s = new Module.Session();
-  try {
-    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
-    return fn(s);
-  } finally {
-    s.delete();
-  }
-}
+const withSphere = (fn) => withSphereOf(Module, fn);
 
 // The highest point after one full-strength draw dab at the front pole, and the raise at half the radius.
 function dab(s, falloff) {
