@@ -19,6 +19,8 @@ import { LazyPointer } from './lazy-pointer.js';
 // A finger on the model starts a stroke only once it moved this far (CSS pixels) with no second
 // finger down: a pinch or a two-finger orbit whose first finger lands on the model is not a stroke.
 const TOUCH_SLOP_PX = 6;
+// lastSamples keeps a long stroke's first samples only (it is for scripts and tests, not the stroke).
+const MAX_SAMPLES_KEPT = 10000;
 
 // The tool palette: the paper's handle grab (web/grab-tool.js) and the core's seven brushes.
 // `name` is what setTool takes and, for brushes, the core's tool name. ('grab' is not a tool name:
@@ -252,7 +254,7 @@ export class BrushTool extends CanvasTool {
         q.y = s.lazy.y;
       }
       s.pending.push(q);
-      this.lastSamples.push([q.x, q.y]);
+      if (this.lastSamples.length < MAX_SAMPLES_KEPT) this.lastSamples.push([q.x, q.y]);
     }
     this.view.schedule();
   }
