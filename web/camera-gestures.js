@@ -41,7 +41,7 @@ export function createCameraGestures({ viewer, pick }) {
     turn.copy(camera.quaternion).multiply(before.invert()); // R = q_after * q_before^-1
     before.copy(camera.quaternion);
     arm.copy(pivot).sub(controls.target);
-    shift.copy(arm).sub(arm.clone().applyQuaternion(turn));
+    shift.copy(arm).sub(arm.applyQuaternion(turn)); // (I - R)(P - T)
     if (shift.lengthSq() === 0) return; // a pan or a zoom: no turn
     camera.position.add(shift);
     controls.target.add(shift);
