@@ -52,9 +52,9 @@ struct SettingsPatch {
 SettingsPatch parse_settings(const nlohmann::json& s, const std::string& context = "settings: ");
 nlohmann::json to_json(const SettingsPatch& s);
 
-// The settings of a brush stroke (tool, radius, strength, spacing, symmetry, invert), checked as in
-// a brush step; `stroke_keys` are further keys the caller reads itself (a step's path, pressure).
-// Also what the wasm module's brushBegin takes.
+// The settings of a brush stroke (tool, radius, strength, spacing, symmetry, invert, detail,
+// falloff), checked as in a brush step; `stroke_keys` are further keys the caller reads itself (a
+// step's path, pressure). Also what the wasm module's brushBegin takes.
 deform::BrushSettings parse_brush_settings(const nlohmann::json& b, const std::string& context = "brush: ",
                                            std::initializer_list<const char*> stroke_keys = {});
 
