@@ -4,7 +4,7 @@
 // flood fill remeshes the whole mesh to the detail, an orbit drag over the model turns around the
 // point under the press, and two fingers orbit and pinch-zoom without sculpting.
 import { test, expect } from '@playwright/test';
-import { watchErrors, open, stats } from './helpers.mjs';
+import { watchErrors, open, stats, save, sameAs } from './helpers.mjs';
 
 // A panel control by its exact label (lil-gui: .lil-controller > .lil-name).
 const control = (page, name) => page.locator('.adasculpt-panel .lil-controller')
@@ -224,13 +224,18 @@ test('an orbit drag over the model turns around the point under the press, which
   expect(errors).toEqual([]);
 });
 
+// Touch through the DevTools protocol (real touch events, as a touch screen sends them).
+async function touchScreen(page) {
+  const cdp = await page.context().newCDPSession(page);
+  return (type, points) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: points.map(([x, y], id) => ({ x, y, id, radiusX: 2, radiusY: 2, force: 1 })),
+  });
+}
+
 test('touch: two fingers pinch-zoom and orbit without sculpting; one finger on the model sculpts', async ({ page }) => {
   const errors = watchErrors(page);
   await frontWithBrush(page, '2');
-  const cdp = await page.context().newCDPSession(page);
-  const touch = (type, points) => cdp.send('Input.dispatchTouchEvent', {
-    type, touchPoints: points.map(([x, y], id) => ({ x, y, id, radiusX: 2, radiusY: 2, force: 1 })),
-  });
+  const touch = await touchScreen(page);
   const [cx, cy] = await toScreen(page, [0, 0, 1]);
   // One finger off the model (below it) orbits.
   const r = cx - (await toScreen(page, [-1, 0, 0]))[0];
@@ -272,5 +277,31 @@ test('touch: two fingers pinch-zoom and orbit without sculpting; one finger on t
   await keys(page);
   await page.keyboard.press('Control+z');
   expect((await stats(page)).canUndo).toBe(false);
+  expect(errors).toEqual([]);
+});
+
+test('touch with the Pull tool: a pinch on the model zooms without a grab; one finger on the model pulls', async ({ page }) => {
+  const errors = watchErrors(page);
+  await open(page);
+  expect(await page.evaluate(() => window.app.tool)).toBe('pull');
+  const touch = await touchScreen(page);
+  const v = await view(page);
+  const [cx, cy] = await toScreen(page, v.target); // over the sphere's centre: on the model
+  await touch('touchStart', [[cx - 20, cy], [cx + 20, cy]]);
+  for (let i = 1; i <= 8; i++) await touch('touchMove', [[cx - 20 - 8 * i, cy], [cx + 20 + 8 * i, cy]]);
+  await touch('touchEnd', []);
+  expect((await view(page)).distance).toBeLessThan(v.distance * 0.85);
+  expect((await stats(page)).canUndo, 'no grab, no undo step').toBe(false);
+  await save(page, 'before pull');
+  const zoomed = await view(page);
+  const [sx, sy] = await toScreen(page, zoomed.target);
+  await touch('touchStart', [[sx, sy]]);
+  for (let i = 1; i <= 8; i++) await touch('touchMove', [[sx, sy - 8 * i]]);
+  await touch('touchEnd', []);
+  await expect.poll(async () => (await stats(page)).canUndo).toBe(true);
+  expect(await sameAs(page, 'before pull'), 'the finger pulled the surface').toBe(false);
+  const outward = (await vertices(page)).reduce((m, p) => Math.max(m, Math.hypot(...p)), 0);
+  expect(outward, 'out of the sphere').toBeGreaterThan(1.01);
+  expect(Math.hypot(...(await view(page)).position.map((x, i) => x - zoomed.position[i])), 'the view stayed').toBeLessThan(1e-9);
   expect(errors).toEqual([]);
 });

@@ -15,10 +15,7 @@ import { raycastSurface } from './surface-raycast.js';
 import { CanvasTool, isTextInput } from './tool-events.js';
 import { checkSymmetry } from './settings.js';
 import { LazyPointer } from './lazy-pointer.js';
-
-// A finger on the model starts a stroke only once it moved this far (CSS pixels) with no second
-// finger down: a pinch or a two-finger orbit whose first finger lands on the model is not a stroke.
-const TOUCH_SLOP_PX = 6;
+import { TouchGate } from './touch-gate.js';
 // lastSamples keeps a long stroke's first samples only (it is for scripts and tests, not the stroke).
 const MAX_SAMPLES_KEPT = 10000;
 
@@ -125,8 +122,7 @@ export class BrushTool extends CanvasTool {
     this.hoverPending = false;
     this.hoverHit = null;
     this.modifier = false;   // Ctrl/Alt held: the cursor previews the inverted brush
-    this.touches = new Set(); // touch pointers down on the canvas
-    this.touchPending = null; // a finger on the model that has not moved yet: {pointerId, x, y, hit}
+    this.touch = new TouchGate((hold) => view.holdTouchOrbit(hold)); // one finger strokes, two are the view's
     this.lastSamples = [];    // the last stroke's samples as sent (screen x, y), for scripts and tests
     this.cursor = new BrushCursor(view.cursorParent, view.changed);
   }
@@ -163,7 +159,7 @@ export class BrushTool extends CanvasTool {
     this.beginStroke(e, hit);
   }
 
-  // A mouse or pen press on the surface, or a finger once it moved (onTouchMoved).
+  // A mouse or pen press on the surface, or a finger once it moved or tapped (web/touch-gate.js).
   beginStroke(e, hit) {
     const inverted = e.ctrlKey || e.altKey;
     if (!this.core.begin({ invert: inverted, point: hit.point })) return;
@@ -189,43 +185,16 @@ export class BrushTool extends CanvasTool {
     this.updateCursor();
   }
 
-  // Touch: one finger on the model sculpts, two fingers orbit and pinch-zoom (OrbitControls, which
-  // must see every finger's pointerdown to track the gesture, so touches are never swallowed here).
-  // While a finger rests on the model, OrbitControls' one-finger orbit is held off; the stroke starts
-  // when it moves, unless a second finger came first.
+  // Touch (web/touch-gate.js): a finger on the model strokes once it moves (a tap: one dab); a second
+  // finger ends the stroke and the two orbit and zoom.
   onTouchDown(e) {
-    // The first finger of a new touch: fingers lifted outside the canvas (no pointerup here) are gone.
-    if (e.isPrimary) this.touches.clear();
-    this.touches.add(e.pointerId);
-    if (this.touches.size > 1) {
-      this.touchPending = null;
-      if (this.stroke) this.finishStroke(e); // a second finger ends the stroke; the gesture is the view's
+    if (this.touch.down(e)) {
+      if (this.stroke) this.finishStroke(e);
       return;
     }
     if (!this.enabled || this.stroke || this.core.busy()) return;
     const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
-    if (!hit) return; // off the model: one finger orbits
-    this.view.holdTouchOrbit(true);
-    this.touchPending = { pointerId: e.pointerId, x: e.clientX, y: e.clientY, hit };
-  }
-
-  onTouchMoved(e) {
-    const p = this.touchPending;
-    if (!p || e.pointerId !== p.pointerId || Math.hypot(e.clientX - p.x, e.clientY - p.y) < TOUCH_SLOP_PX) return;
-    this.touchPending = null;
-    const down = { clientX: p.x, clientY: p.y, pointerId: p.pointerId, pointerType: 'touch', pressure: 1,
-      ctrlKey: false, altKey: false, target: e.target };
-    this.beginStroke(down, p.hit);
-  }
-
-  onTouchUp(e) {
-    this.touches.delete(e.pointerId);
-    const p = this.touchPending;
-    if (p && p.pointerId === e.pointerId) {
-      this.touchPending = null;
-      if (e.type === 'pointerup') this.beginStroke(e, p.hit); // a tap on the model: one dab (not a cancel)
-    }
-    if (this.touches.size === 0) this.view.holdTouchOrbit(false);
+    if (hit) this.touch.wait(e, hit); // off the model: one finger orbits
   }
 
   onPointerLeave() {
@@ -236,7 +205,8 @@ export class BrushTool extends CanvasTool {
   onPointerMove(e) {
     this.modifier = e.ctrlKey || e.altKey;
     if (!this.enabled) return;
-    if (this.touchPending) this.onTouchMoved(e);
+    const press = this.touch.pending && this.touch.moved(e);
+    if (press) this.beginStroke(press.down, press.hit);
     if (!this.stroke) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
@@ -260,7 +230,8 @@ export class BrushTool extends CanvasTool {
   }
 
   onPointerUp(e) {
-    if (e.pointerType === 'touch') this.onTouchUp(e);
+    const tap = e.pointerType === 'touch' && this.touch.up(e);
+    if (tap) this.beginStroke(tap.down, tap.hit);
     if (!this.stroke || e.pointerId !== this.stroke.pointerId) return;
     this.finishStroke(e);
   }

@@ -39,3 +39,35 @@ test('the detail length of each mode', () => {
   assert.ok(Math.abs(detailLength({ ...feel, detailMode: 'brush' }, at) - 0.06) < 1e-15);
   assert.strictEqual(detailLength({ ...feel, detailMode: 'pixels' }, at), 0.008);
 });
+
+test('the touch gate: a finger on the model is the tool\'s once it moves or taps, never when a second finger comes', async () => {
+  const { TouchGate, TOUCH_SLOP_PX } = await import('../../web/touch-gate.js');
+  const held = [];
+  const gate = new TouchGate((h) => held.push(h));
+  const ev = (type, pointerId, x, isPrimary = pointerId === 1) => ({ type, pointerId, clientX: x, clientY: 0, isPrimary, target: null });
+  // One finger: waits, then the press at the landing point once it moved past the slop.
+  assert.strictEqual(gate.down(ev('pointerdown', 1, 100)), false);
+  gate.wait(ev('pointerdown', 1, 100), 'hit');
+  assert.strictEqual(gate.moved(ev('pointermove', 1, 100 + TOUCH_SLOP_PX - 1)), null);
+  const press = gate.moved(ev('pointermove', 1, 100 + TOUCH_SLOP_PX + 1));
+  assert.deepStrictEqual([press.down.clientX, press.down.pointerId, press.hit], [100, 1, 'hit']);
+  assert.strictEqual(gate.up(ev('pointerup', 1, 120)), null);
+  assert.deepStrictEqual(held, [true, false]);
+  // Two fingers: the second cancels the wait; nothing is the tool's.
+  gate.down(ev('pointerdown', 1, 100));
+  gate.wait(ev('pointerdown', 1, 100), 'hit');
+  assert.strictEqual(gate.down(ev('pointerdown', 2, 140)), true);
+  assert.strictEqual(gate.moved(ev('pointermove', 1, 60)), null);
+  assert.strictEqual(gate.up(ev('pointerup', 1, 60)), null);
+  assert.strictEqual(gate.up(ev('pointerup', 2, 180)), null);
+  // A tap is the tool's; a cancel is not.
+  gate.down(ev('pointerdown', 1, 100));
+  gate.wait(ev('pointerdown', 1, 100), 'hit');
+  assert.strictEqual(gate.up(ev('pointerup', 1, 100)).hit, 'hit');
+  gate.down(ev('pointerdown', 1, 100));
+  gate.wait(ev('pointerdown', 1, 100), 'hit');
+  assert.strictEqual(gate.up(ev('pointercancel', 1, 100)), null);
+  // A finger lifted outside the canvas is forgotten when a new touch starts.
+  gate.down(ev('pointerdown', 5, 0, false));
+  assert.strictEqual(gate.down(ev('pointerdown', 1, 100)), false);
+});
