@@ -327,10 +327,31 @@ void Remesher::Impl::build_reference() {
 // near the previous one: walk from the hint triangle over the triangles around its corners
 // until no neighbour is closer (a handful of triangle tests instead of a tree descent).
 // Without a hint, or when the walk does not settle, the AABB tree answers exactly.
-geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Point& p, std::uint32_t hint) const {
+// With `facing`, only triangles facing that side take part (TriangleTree::closest_point_facing),
+// and the tree answers whenever the walk ends farther than kFarProjection target lengths (`far`):
+// a walk that started on the other sheet of a thin part stops there, at a local minimum.
+geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Point& p, std::uint32_t hint,
+                                                                        const Vec3* facing, double far) const {
+  const auto& tris = tree.triangles();
+  if (facing) {
+    geometry::TriangleTree::ClosestHit walked;
+    if (hint < tris.size() && tree.faces(hint, *facing)) walked = walk_reference(p, hint, facing);
+    if (walked.triangle != UINT32_MAX && walked.distance2 <= far * far) return walked;
+    geometry::TriangleTree::ClosestHit exact = tree.closest_point_facing(p, *facing, &walked);
+    return exact.triangle != UINT32_MAX ? exact : closest_on_reference(p, hint);
+  }
+  if (hint == UINT32_MAX || hint >= tris.size()) return tree.closest_point(p);
+  const geometry::TriangleTree::ClosestHit best = walk_reference(p, hint, nullptr);
+  return best.triangle == UINT32_MAX ? tree.closest_point(p) : best;
+}
+
+// The walk itself: from the hint triangle (which must face `facing` when given) over
+// neighbouring triangles while one is closer. Ends at a local minimum of the distance, or after
+// 16 steps with the tree's exact answer (without `facing`) or the best so far (with it).
+geometry::TriangleTree::ClosestHit Remesher::Impl::walk_reference(const Point& p, std::uint32_t hint,
+                                                                  const Vec3* facing) const {
   const auto& tris = tree.triangles();
   const auto& pts = tree.points();
-  if (hint == UINT32_MAX || hint >= tris.size()) return tree.closest_point(p);
   geometry::TriangleTree::ClosestHit best;
   // Triangles already measured in this query: neighbouring fans overlap, and each walk step
   // revisits most of the previous one.
@@ -341,6 +362,7 @@ geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Po
     for (int i = 0; i < n_seen; ++i)
       if (seen[i] == ti) return false;
     if (n_seen < kSeenMax) seen[n_seen++] = ti;
+    if (facing && !tree.faces(ti, *facing)) return false;
     const auto& t = tris[ti];
     double bary[3];
     Point q = geometry::closest_point_on_triangle(p, pts[t[0]], pts[t[1]], pts[t[2]], bary);
@@ -375,7 +397,7 @@ geometry::TriangleTree::ClosestHit Remesher::Impl::closest_on_reference(const Po
     }
     if (!improved) return best;
   }
-  return tree.closest_point(p, best);
+  return facing ? best : tree.closest_point(p, best);
 }
 
 double Remesher::Impl::reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const {
@@ -385,7 +407,15 @@ double Remesher::Impl::reference_sizing_at(const Point& p, std::uint32_t* hint_t
 }
 
 void Remesher::Impl::project(Vertex v) {
-  geometry::TriangleTree::ClosestHit hit = closest_on_reference(mesh.position(v), ref_hint[v]);
+  // A free vertex projects onto the reference triangles that face its own way: on a part thinner
+  // than an edge the nearest reference point may lie on the opposite sheet (gen/thin_plate: a
+  // vertex of the bottom, its walk started from a hint on the top, went to the top and took its
+  // fan with it: 24k crossing pairs after the first projection).
+  const Vec3 normal = vclass[v] == kFree ? fan_normal(v) : Vec3(0.0);
+  const bool oriented = glm::dot(normal, normal) > 0;
+  geometry::TriangleTree::ClosestHit hit =
+      oriented ? closest_on_reference(mesh.position(v), ref_hint[v], &normal, kFarProjection * sizing[v])
+               : closest_on_reference(mesh.position(v), ref_hint[v]);
   ref_hint[v] = hit.triangle;
   // Feature vertices go onto the nearest reference feature line instead: the nearest surface
   // point of a vertex beside a sharp edge lies on one of its faces, off the edge.

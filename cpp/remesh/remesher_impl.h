@@ -165,7 +165,9 @@ struct Remesher::Impl : RemeshScratch {
   bool clamp_decides_sizing() const { return !(opt.min_length < opt.max_length); }
   void average_feature_sizing(const std::vector<Vertex>& vertices);
   double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
-  geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint) const;
+  geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint,
+                                                          const Vec3* facing = nullptr, double far = 0) const;
+  geometry::TriangleTree::ClosestHit walk_reference(const Point& p, std::uint32_t hint, const Vec3* facing) const;
   void project(Vertex v);
   void project_onto_feature_line(Vertex v);
 
@@ -235,6 +237,9 @@ struct Remesher::Impl : RemeshScratch {
   bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true,
                             double min_cos = 0.5) const;
   double collapse_quality(Halfedge h) const;
+  // ---- safety guards (safety.cpp)
+  // Twice the area-weighted normal of v's fan (not normalised).
+  Vec3 fan_normal(Vertex v) const;
   // Picks how to collapse the short edge e (ratio: squared length / squared threshold): the
   // halfedge and whether both ends meet at the midpoint; false when no collapse is allowed.
   bool choose_collapse(Edge e, double ratio, Halfedge* h, bool* midpoint) const;
