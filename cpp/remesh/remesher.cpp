@@ -189,6 +189,8 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   return stats;
 }
 
+bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0; }
+
 size_t Remesher::polish() {
   Impl& m = *impl_;
   m.enter_whole_mesh();

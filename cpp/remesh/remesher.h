@@ -87,6 +87,9 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
+  // The next iterate_region measures the sizing again (it does every few calls): a caller with
+  // a frame budget can give that frame's other work less.
+  bool sizing_due() const;
   // Mirror symmetry for region iterations (brush strokes with symmetry on). When the mesh is
   // exactly symmetric across the plane where coordinate `axis` is 0 (geometry::find_mirror_map),
   // iterate_region does every split, collapse, flip and move on both vertices/edges of a mirror

@@ -79,6 +79,10 @@ struct Session::Impl {
   UndoLog history;
   std::vector<mesh::Vertex> step_touched;
   size_t step_touched_from = 0;  // where the current step's vertices start in changes.touched_vertices
+  // step_touched holds each vertex once: a grab touches its whole region every frame, and the
+  // list grew by the region each frame (600k entries for a 60-frame pull of a 10k ROI).
+  std::vector<std::uint32_t> step_mark;  // per vertex slot: step_epoch when in step_touched
+  std::uint32_t step_epoch = 0;
 
   Grab grab;
   // Alive during a grab or a stroke, and kept from one stroke to the next while features are off
@@ -188,11 +192,22 @@ struct Session::Impl {
   void push_undo() {
     step_touched.clear();
     step_touched_from = changes.touched_vertices.size();
+    if (++step_epoch == 0) {
+      std::fill(step_mark.begin(), step_mark.end(), 0u);
+      step_epoch = 1;
+    }
   }
   // The step's share of changes.touched_vertices (the viewer may not have read earlier ones yet).
   void move_step_touched() {
     const auto& t = changes.touched_vertices;
-    step_touched.insert(step_touched.end(), t.begin() + std::ptrdiff_t(std::min(step_touched_from, t.size())), t.end());
+    if (step_mark.size() < mesh.vertices_size()) step_mark.resize(mesh.vertices_size() * 5 / 4 + 16, 0u);
+    for (size_t i = std::min(step_touched_from, t.size()); i < t.size(); ++i) {
+      const mesh::Vertex v = t[i];
+      if (v.idx >= step_mark.size()) step_mark.resize(size_t(v.idx) * 5 / 4 + 16, 0u);
+      if (step_mark[v.idx] == step_epoch) continue;
+      step_mark[v.idx] = step_epoch;
+      step_touched.push_back(v);
+    }
     step_touched_from = 0;
   }
   void commit_step() {

@@ -14,12 +14,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>  // per-frame dumps under callgrind (ADASCULPT_PULL_FRAMES)
+#else
+#define CALLGRIND_DUMP_STATS_AT(x)
+#endif
 
 #include "deform/geodesic.h"
 #include "deform/handle_deformer.h"
@@ -153,6 +159,11 @@ void run_pull(benchmark::State& state, const mesh::SurfaceMesh& m, const char* l
         deform.push_back(f.deform_ms);
         remesh.push_back(f.remesh_ms);
         region = std::max(region, size_t(f.roi_vertices));
+        if (std::getenv("ADASCULPT_PULL_FRAMES")) {  // per-frame phases, to see what makes a slow frame slow
+          CALLGRIND_DUMP_STATS_AT(("frame " + std::to_string(i)).c_str());
+          std::printf("  run %d frame %2d cpu %6.2f roi %5.2f field %5.2f refine %5.2f deform %5.2f remesh %6.2f\n", run, i,
+                      cpu.back(), f.roi_ms, f.field_ms, f.refine_ms, f.deform_ms, f.remesh_ms);
+        }
         capped = capped || f.roi_capped;
         session.clear_changes();
       }
