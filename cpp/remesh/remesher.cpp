@@ -181,10 +181,11 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   m.region_calls_since_sizing = (m.region_calls_since_sizing + 1) % kRegionSizingInterval;
   IterationStats stats = m.run_iteration(false);
   region.clear();
-  for (Vertex v : m.scope_vertices) {
-    m.scope[v] = kOutside;  // removed ones too: an undo can bring their slots back
-    if (!m.mesh.is_deleted(v)) region.push_back(v);
-  }
+  for (Vertex v : m.scope_vertices)
+    if (!m.mesh.is_deleted(v)) {
+      m.scope[v] = kOutside;
+      region.push_back(v);
+    }
   return stats;
 }
 
@@ -196,21 +197,6 @@ void Remesher::end_region_sequence(const std::vector<Vertex>& vertices) {
   for (Vertex v : vertices)
     if (v.idx < n) m.sizing[v] = 0.0;
   m.region_calls_since_sizing = 0;
-}
-
-void Remesher::remove_properties(SurfaceMesh& mesh) {
-  auto drop_vertex = [&](auto unused, const char* name) {
-    auto p = mesh.get_vertex_property<decltype(unused)>(name);
-    if (p.is_valid()) mesh.remove_vertex_property(p);
-  };
-  drop_vertex(double(), "remesh:sizing");
-  drop_vertex(std::uint8_t(), "remesh:class");
-  drop_vertex(std::uint8_t(), "remesh:scope");
-  drop_vertex(std::uint32_t(), "remesh:hint");
-  drop_vertex(std::uint32_t(), "remesh:segment_hint");
-  drop_vertex(Vertex(), "remesh:mirror");
-  auto feature = mesh.get_edge_property<std::uint8_t>("remesh:feature");
-  if (feature.is_valid()) mesh.remove_edge_property(feature);
 }
 
 size_t Remesher::polish() {

@@ -70,7 +70,9 @@ struct RemeshReport {
 class Remesher {
  public:
   // The mesh's current surface becomes the reference for projection and sizing.
-  // Marks feature edges when options.feature_angle_deg > 0.
+  // Marks feature edges when options.feature_angle_deg > 0. The remesher attaches its arrays
+  // ("remesh:..." properties) to the mesh and removes them when it is destroyed, so one mesh has
+  // at most one live Remesher at a time (destroy the old one before making the next).
   Remesher(SurfaceMesh& mesh, const RemeshOptions& options);
   ~Remesher();
   Remesher(const Remesher&) = delete;
@@ -95,9 +97,6 @@ class Remesher {
   // the next call measures again, so that what a stroke does depends on the mesh only, not on
   // the strokes before it (an undone stroke drawn again gives the same mesh).
   void end_region_sequence(const std::vector<Vertex>& vertices);
-  // Removes the per-slot arrays a Remesher keeps on the mesh (they outlive it; a new remesher
-  // would find them). For a mesh whose slots were rewritten behind the remesher's back (undo).
-  static void remove_properties(SurfaceMesh& mesh);
   // Mirror symmetry for region iterations (brush strokes with symmetry on). When the mesh is
   // exactly symmetric across the plane where coordinate `axis` is 0 (geometry::find_mirror_map),
   // iterate_region does every split, collapse, flip and move on both vertices/edges of a mirror
