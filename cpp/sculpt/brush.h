@@ -68,10 +68,6 @@ class BrushStroker {
   size_t face_budget() const { return face_budget_; }
   const deform::BrushSettings& settings() const { return settings_; }
   deform::BrushDeformer& deformer() { return deformer_; }
-  // Where the last stroke ended (the next stroke's start walks from it): part of what an undo
-  // brings back, since the walk decides where the next stroke finds the surface.
-  mesh::Vertex last_stroke_vertex() const { return last_stroke_seed_; }
-  void set_last_stroke_vertex(mesh::Vertex v) { last_stroke_seed_ = v; }
   // Called once per stroke when its first sample has found the surface, before the first stamp:
   // the vertex there, and whether it was reached by walking from the last stroke's (then it lies
   // on the same connected component). The Session sets the stroke's detail there.

@@ -54,27 +54,6 @@ struct Session::Impl {
   // list grew by the region each frame (600k entries for a 60-frame pull of a 10k ROI).
   std::vector<std::uint32_t> step_mark;  // per vertex slot: step_epoch when in step_touched
   std::uint32_t step_epoch = 0;
-  // What steers the next stroke besides the mesh: where the last stroke ended (its start walks
-  // from there, and a walk that arrives reuses the component's diagonal). Kept per undo step,
-  // before and after it, so that undo and redo bring it back with the mesh: a stroke undone and
-  // drawn again then gives the same mesh. known = false: a step that is not a stroke or a grab.
-  struct StrokeContext {
-    mesh::Vertex last_vertex;
-    double component_diagonal = 0;
-  };
-  struct StepContext {
-    bool known = false;
-    StrokeContext before, after;
-  };
-  std::deque<StepContext> context_undo, context_redo;  // parallel to the history's steps
-  StrokeContext context_at_push;
-  StrokeContext stroke_context() const { return {brush.last_stroke_vertex(), component_diagonal}; }
-  // After a commit: one entry per history step (the oldest go with the history's limits).
-  void note_step(bool known) {
-    context_undo.push_back({known, context_at_push, stroke_context()});
-    context_redo.clear();
-    while (context_undo.size() > history.undo_steps()) context_undo.pop_front();
-  }
 
   Grab grab;
   // Alive during a grab or a stroke, and kept from one stroke to the next while features are off
@@ -183,7 +162,6 @@ struct Session::Impl {
   }
   // A grab or a stroke starts: its step is recorded when it ends (commit_step).
   void push_undo() {
-    context_at_push = stroke_context();
     step_touched.clear();
     step_touched_from = changes.touched_vertices.size();
     if (++step_epoch == 0) {
@@ -207,7 +185,6 @@ struct Session::Impl {
   void commit_step() {
     move_step_touched();
     history.commit_local(mesh, step_touched);
-    note_step(true);
     step_touched.clear();
     step_touched.shrink_to_fit();
   }
@@ -216,8 +193,6 @@ struct Session::Impl {
   void new_base() {
     history.reset(mesh);
     history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
-    context_undo.clear();
-    context_redo.clear();
   }
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
@@ -247,29 +222,11 @@ struct Session::Impl {
     bool whole = false;
     const bool done = back ? history.undo(mesh, &touched, &whole) : history.redo(mesh, &touched, &whole);
     if (!done) return false;
-    // The stroke context as it was before the undone step (after the redone one).
-    std::deque<StepContext>& from = back ? context_undo : context_redo;
-    std::deque<StepContext>& to = back ? context_redo : context_undo;
-    const size_t expected = (back ? history.undo_steps() : history.redo_steps()) + 1;
-    StepContext c;
-    if (from.size() == expected) {
-      c = from.back();
-      from.pop_back();
-      to.push_back(c);
-    } else {  // out of step with the history (a restored state): forget it
-      context_undo.clear();
-      context_redo.clear();
-    }
-    const StrokeContext& now = back ? c.before : c.after;
-    brush.set_last_stroke_vertex(c.known ? now.last_vertex : mesh::Vertex());
     if (whole) {
       mesh_replaced();
     } else {
-      // The remesher's per-slot arrays are not logged: the slots the step brought back hold what
-      // the step left there (sizing measured on the undone surface, scope marks). They go with
-      // it, and the next stroke's remesher starts from defaults, as it did on the loaded mesh.
-      drop_remesher();
-      component_diagonal = c.known ? now.component_diagonal : 0;
+      drop_remesher();  // its arrays were not logged: the slots the step brought back hold defaults
+      component_diagonal = 0;
       tree_valid = false;
       changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
@@ -463,7 +420,6 @@ void Session::remesh(int iterations, double detail) {
   s.remesh_warning = remesh::remesh(s.mesh, o).warning;
   if (s.mesh.has_garbage()) s.mesh.garbage_collection();
   s.history.commit_whole(s.mesh);
-  s.note_step(false);
   s.last = FrameTimings{};
   s.last.remesh_ms = s.last.total_ms = ms_since(t0);
   s.mesh_replaced();
@@ -599,8 +555,6 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   s.mesh = std::move(state.mesh);
   s.has_mesh = true;
   s.history = std::move(state.history);
-  s.context_undo.clear();  // the restored steps carry no stroke context
-  s.context_redo.clear();
   s.options = o;
   for (bool& rel : s.relative) rel = true;  // the blob holds lengths; the app's settings are percentages
   s.diagonal = state.settings.diagonal;

@@ -7,6 +7,9 @@
 #include <cstring>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
 
@@ -82,4 +85,34 @@ TEST(SculptRedraw, ALaterStrokeUndoneAndDrawnAgainGivesTheSameMesh) {
   ASSERT_TRUE(s.undo());
   s.brush_stroke(inflate_stroke());
   expect_same_slots(first, s.mesh(), "second stroke drawn again");
+}
+
+// A stroke that grows the object (its bounding box, by which strokes scale their detail) before the
+// one undone and drawn again.
+TEST(SculptRedraw, AStrokeAfterOneThatGrewTheObjectIsDrawnAgainTheSame) {
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(4));
+  sculpt::BrushStroke grow = inflate_stroke();
+  grow.settings.strength = 1.0;
+  grow.settings.radius = 0.5;
+  grow.settings.symmetry_axis = -1;
+  grow.settings.tool = deform::BrushTool::Draw;
+  grow.path.clear();
+  for (int i = 0; i < 120; ++i) {  // back and forth over the top
+    const double y = 0.1 * std::sin(0.5 * i);
+    grow.path.emplace_back(0.0, y, std::sqrt(1 - y * y));
+  }
+  auto diagonal = [&] {
+    Point lo(1e300), hi(-1e300);
+    for (mesh::Vertex v : s.mesh().vertices()) lo = glm::min(lo, s.mesh().position(v)), hi = glm::max(hi, s.mesh().position(v));
+    return glm::length(hi - lo);
+  };
+  const double before = diagonal();
+  s.brush_stroke(grow);  // pushes the top of the sphere out: a larger diagonal
+  ASSERT_GT(diagonal(), 1.02 * before);
+  s.brush_stroke(inflate_stroke());
+  const mesh::SurfaceMesh first = s.mesh();
+  ASSERT_TRUE(s.undo());
+  s.brush_stroke(inflate_stroke());
+  expect_same_slots(first, s.mesh(), "drawn again after a stroke that grew the object");
 }
