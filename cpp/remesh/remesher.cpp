@@ -195,6 +195,16 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   return stats;
 }
 
+bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0; }
+
+void Remesher::end_region_sequence(const std::vector<Vertex>& vertices) {
+  Impl& m = *impl_;
+  const size_t n = m.mesh.vertices_size();
+  for (Vertex v : vertices)
+    if (v.idx < n) m.sizing[v] = 0.0;
+  m.region_calls_since_sizing = 0;
+}
+
 size_t Remesher::polish() {
   Impl& m = *impl_;
   m.enter_whole_mesh();

@@ -138,6 +138,10 @@ Vec3 mirrored(Vec3 v, int axis) {
 }
 }  // namespace
 
+mesh::Vertex locate_on_surface(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_surface) {
+  return locate(mesh, p, on_surface);
+}
+
 size_t stroke_face_budget(size_t faces_at_start) {
   const size_t grown = std::max(kStrokeGrowthFactor * faces_at_start, kStrokeFaceFloor);
   return std::min(grown, std::max(faces_at_start, kStrokeFaceCeiling));
