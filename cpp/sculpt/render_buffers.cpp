@@ -27,6 +27,16 @@ void extend(std::uint32_t& begin, std::uint32_t& end, std::uint32_t b, std::uint
 }  // namespace
 
 void RenderChanges::merge(const RenderChanges& later) {
+  if (later.rebuilt) {  // the later box covers every vertex: what this one had is out of date
+    std::copy_n(later.box_min, 3, box_min);
+    std::copy_n(later.box_max, 3, box_max);
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      box_min[k] = std::min(box_min[k], later.box_min[k]);
+      box_max[k] = std::max(box_max[k], later.box_max[k]);
+    }
+  }
+  rebuilt = rebuilt || later.rebuilt;
   reallocated = reallocated || later.reallocated;
   indices_changed = indices_changed || later.indices_changed;
   extend(vertex_begin, vertex_end, later.vertex_begin, later.vertex_end);
@@ -81,6 +91,10 @@ void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
   out[0] = float(p.x);
   out[1] = float(p.y);
   out[2] = float(p.z);
+  for (int k = 0; k < 3; ++k) {
+    last_.box_min[k] = std::min(last_.box_min[k], out[k]);
+    last_.box_max[k] = std::max(last_.box_max[k], out[k]);
+  }
 }
 
 // Area-weighted average of the incident face normals: the sum of the corner cross products.
@@ -155,6 +169,7 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
   vertex_count_ = nv;
   face_count_ = nf;
   work_ = size_t(nv) + nf;
+  last_.rebuilt = true;
   last_.everything(nv, nf);
   pending_.merge(last_);
   return last_;

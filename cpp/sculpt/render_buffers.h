@@ -20,6 +20,7 @@
 // remesher only edits edges with both ends in the region (a flip's old edge ends, a collapse's
 // survivor, a split's new vertex), new vertices join the region, and the collapses and undo
 // steps list the face slots they delete (ChangeSet::touched_faces).
+#include <cfloat>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,6 +37,12 @@ struct RenderChanges {
   std::uint32_t vertex_begin = 0, vertex_end = 0;
   std::uint32_t face_begin = 0, face_end = 0;
   std::uint32_t vertex_count = 0, face_count = 0;
+  // Axis-aligned box of every position written (empty: min > max), and whether a rebuild wrote
+  // all of them. A viewer keeps the mesh's bounds by growing them with the box (starting over
+  // after a rebuild) instead of a pass over every vertex per stroke; the bounds may then be a
+  // little larger than the mesh (vertices moved inwards or deleted), which culling tolerates.
+  bool rebuilt = false;
+  float box_min[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, box_max[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
 
   bool empty() const { return !reallocated && vertex_begin == vertex_end && face_begin == face_end; }
   // Marks all `vertices` and `faces` slots dirty (and the indices changed).

@@ -4,6 +4,8 @@
 // 16 copies of a sphere does the same buffer work.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cfloat>
 #include <cstddef>
 #include <random>
 #include <string>
@@ -22,11 +24,33 @@ using adasculpt::test::expect_matches_rebuild;
 
 namespace {
 
+// The viewer's bounds, grown by each update's box as web/mesh-buffers.js does.
+struct Bounds {
+  float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+  void grow(const sculpt::RenderChanges& c) {
+    if (c.rebuilt) *this = Bounds{};
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], c.box_min[k]);
+      hi[k] = std::max(hi[k], c.box_max[k]);
+    }
+  }
+  // Every live vertex inside, as drawn.
+  void expect_holds(const mesh::SurfaceMesh& m, const sculpt::RenderBuffers& rb) const {
+    for (mesh::Vertex v : m.vertices())
+      for (int k = 0; k < 3; ++k) {
+        const float x = rb.positions()[3 * v.idx + k];
+        ASSERT_TRUE(lo[k] <= x && x <= hi[k]) << "vertex " << v.idx << " outside the grown bounds";
+      }
+  }
+};
+
 // The viewer's frame: upload what changed, forget it. Returns the update's work.
-size_t frame(sculpt::Session& s, sculpt::RenderBuffers& rb, size_t* deleted_faces = nullptr) {
+size_t frame(sculpt::Session& s, sculpt::RenderBuffers& rb, size_t* deleted_faces = nullptr,
+             Bounds* bounds = nullptr) {
   if (deleted_faces) *deleted_faces += s.changes().touched_faces.size();
   rb.update(s.mesh(), s.changes());
   s.clear_changes();
+  if (bounds) bounds->grow(rb.take_pending());
   return rb.last_work();
 }
 
@@ -43,16 +67,16 @@ sculpt::BrushStroke stroke_at(const Point& centre, const Vec3& dir, const Vec3& 
 
 // One stroke, a frame per pointer sample; the summed update work.
 size_t stroke_frames(sculpt::Session& s, sculpt::RenderBuffers& rb, const sculpt::BrushStroke& st,
-                     size_t* deleted_faces = nullptr, const char* where = "stroke") {
+                     size_t* deleted_faces = nullptr, const char* where = "stroke", Bounds* bounds = nullptr) {
   size_t work = 0;
   s.brush_begin(st.settings);
   for (const Point& p : st.path) {
     s.brush_stamp(p);
-    work += frame(s, rb, deleted_faces);
+    work += frame(s, rb, deleted_faces, bounds);
     expect_matches_rebuild(s.mesh(), rb, where);
   }
   s.brush_end();
-  work += frame(s, rb, deleted_faces);
+  work += frame(s, rb, deleted_faces, bounds);
   return work;
 }
 
@@ -74,6 +98,8 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
   };
   size_t deleted_faces = 0;
   int undos = 0, redos = 0, grabs = 0;
+  Bounds bounds;
+  bounds.grow(rb.take_pending());
   for (int op = 0; op < 120; ++op) {
     const std::string at = "operation " + std::to_string(op);
     SCOPED_TRACE(at);
@@ -81,7 +107,7 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
     if (kind < 5) {
       const auto tool = deform::BrushTool(rng() % 7);
       stroke_frames(s, rb, stroke_at(Point(0.0), direction(), direction(), tool, uniform(0.15, 0.4)), &deleted_faces,
-                    at.c_str());
+                    at.c_str(), &bounds);
     } else if (kind < 7) {
       s.grab_begin(Point(direction()), 0.05, uniform(0.2, 0.6));
       const Vec3 pull = 0.25 * direction();
@@ -89,21 +115,22 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
         deform::HandleTransform t;
         t.translation = (i / 4.0) * pull;
         s.grab_drag(t);
-        frame(s, rb, &deleted_faces);
+        frame(s, rb, &deleted_faces, &bounds);
         expect_matches_rebuild(s.mesh(), rb, "grab frame");
       }
       s.grab_end();
-      frame(s, rb, &deleted_faces);
+      frame(s, rb, &deleted_faces, &bounds);
       ++grabs;
     } else if (kind < 9) {
       undos += s.undo() ? 1 : 0;
       EXPECT_FALSE(s.changes().everything) << "a stroke's undo is incremental";
-      frame(s, rb, &deleted_faces);
+      frame(s, rb, &deleted_faces, &bounds);
     } else {
       redos += s.redo() ? 1 : 0;
-      frame(s, rb, &deleted_faces);
+      frame(s, rb, &deleted_faces, &bounds);
     }
     expect_matches_rebuild(s.mesh(), rb, at.c_str());
+    bounds.expect_holds(s.mesh(), rb);
     if (HasFatalFailure()) return;
   }
   s.mesh().validate();
