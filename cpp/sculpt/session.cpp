@@ -17,6 +17,7 @@
 #include "io/load_mesh.h"
 #include "mesh/flat_walk.h"
 #include "mesh/build_from_triangles.h"
+#include "mesh/vertex_mask.h"
 #include "remesh/remesher.h"
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
@@ -103,6 +104,7 @@ struct Session::Impl {
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
+  MaskPainter mask_painter;
 
   mutable geometry::TriangleTree tree;  // of the current surface, built on demand
   mutable bool tree_valid = false;
@@ -396,6 +398,34 @@ void Session::brush_stroke(const BrushStroke& stroke) {
   brush_end();
 }
 
+void Session::mask(const MaskOp& op) {
+  Impl& s = *impl_;
+  s.require_mesh("mask");
+  check_mask_op(op);
+  s.end_grab();
+  if (!mesh::find_mask(s.mesh).is_valid()) {
+    s.mesh.add_vertex_property<float>(mesh::kMaskProperty, 0.0f);
+    s.history.adopt_new_arrays(s.mesh);  // all zero on both sides: the step below logs the change
+  }
+  const geometry::TriangleTree& tree = s.surface_tree();
+  auto locate = [&](const Point& p) {
+    if (tree.empty()) return mesh::Vertex();
+    const geometry::TriangleTree::ClosestHit hit = tree.closest_point(p);
+    mesh::Vertex corners[3];
+    s.mesh.face_vertices(tree.face_of(hit.triangle), corners);
+    return deform::walk_to_nearest_vertex(s.mesh, corners[0], p);
+  };
+  s.push_undo();
+  s.mask_painter.apply(s.mesh, op, locate, s.changes.touched_vertices);
+  s.last = FrameTimings{};
+  s.commit_step();
+}
+
+float Session::mask_value(mesh::Vertex v) const {
+  const mesh::VertexProperty<float> m = mesh::find_mask(impl_->mesh);
+  return m.is_valid() && v.idx < impl_->mesh.vertices_size() ? m[v] : 0.0f;
+}
+
 void Session::remesh(int iterations) {
   Impl& s = *impl_;
   s.require_mesh("remesh");
@@ -467,6 +497,9 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
       }
       case SessionStep::Kind::Remesh:
         remesh(step.count);
+        break;
+      case SessionStep::Kind::Mask:
+        mask(step.mask);
         break;
       case SessionStep::Kind::Undo:
         for (int i = 0; i < step.count; ++i) undo();

@@ -11,6 +11,8 @@
 //      {"brush": {"tool": "inflate", "path": [[x,y,z], ...], "radius": r, "strength": s,
 //                 "symmetry": "x", "spacing": f, "invert": false, "pressure": [p, ...]}},
 //      {"remesh": {"iterations": k}},
+//      {"mask": {"op": "paint", "path": [[x,y,z], ...], "radius": r, "strength": s}},
+//      {"mask": {"op": "invert"}},
 //      {"undo": n}, {"redo": n}]}
 //
 // A grab picks the surface point closest to `center` and applies the total transform gradually
@@ -19,6 +21,9 @@
 // substeps 1). Lengths in settings are absolute or, as strings ending in '%', percent of the
 // bounding-box diagonal. A brush stroke needs tool, path and radius (absolute); strength defaults
 // to 0.5, spacing to 0.25 (of the radius), symmetry to "none", pressure to 1 per path point.
+//
+// A mask step's op is one of paint, erase, clear, fill, invert, blur, sharpen (sculpt/mask.h);
+// paint and erase need path and radius, strength defaults to 1.
 //
 // Every validation error is a std::invalid_argument with one line naming the step and field:
 //   "step 3 (grab): 'roi_radius' must be a positive number".
@@ -33,6 +38,7 @@
 #include "mesh/types.h"
 #include "remesh/length_spec.h"
 #include "sculpt/brush.h"
+#include "sculpt/mask.h"
 
 namespace adasculpt::sculpt {
 
@@ -67,11 +73,16 @@ struct GrabStep {
 };
 
 struct SessionStep {
-  enum class Kind { Grab, Brush, Remesh, Undo, Redo } kind = Kind::Grab;
+  enum class Kind { Grab, Brush, Remesh, Undo, Redo, Mask } kind = Kind::Grab;
   GrabStep grab;  // Kind::Grab
   int count = 1;  // remesh iterations, undo / redo count
   BrushStroke brush;  // Kind::Brush (last: {kind, grab, count} aggregate initialisers stay valid)
+  MaskOp mask;        // Kind::Mask
 };
+
+// A mask operation as in a mask step (also what the wasm module's mask() takes); checked.
+MaskOp parse_mask_op(const nlohmann::json& m, const std::string& context = "mask: ");
+nlohmann::json to_json(const MaskOp& op);
 
 struct SessionFile {
   SettingsPatch settings;
