@@ -236,11 +236,11 @@ struct Remesher::Impl : RemeshScratch {
     return scope[mesh.vertex(e, 0)] != kOutside && scope[mesh.vertex(e, 1)] != kOutside;
   }
   bool movable(Vertex v) const { return scope[v] == kActive && vclass[v] != kCorner; }
-  // A flip of e changes the triangles of all four corners of its quad: all must be in scope.
-  bool flip_in_scope(Edge e) const {
+  // A flip of e changes the triangles of all four corners of its quad: none may be masked (the
+  // sliver fix checks only e's ends otherwise, and flips next to a region's outside vertices).
+  bool flip_spares_masked(Edge e) const {
     const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
-    return in_scope(e) && scope[mesh.to_vertex(mesh.next(h))] != kOutside &&
-           scope[mesh.to_vertex(mesh.next(o))] != kOutside;
+    return !masked(mesh.to_vertex(mesh.next(h))) && !masked(mesh.to_vertex(mesh.next(o)));
   }
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;

@@ -29,9 +29,10 @@ std::optional<MaskOpKind> parse_mask_op_kind(const std::string& name) {
 
 bool mask_op_has_path(MaskOpKind kind) { return kind == MaskOpKind::Paint || kind == MaskOpKind::Erase; }
 
-void check_mask_op(const MaskOp& op) {
+void check_mask_op(const MaskOp& op, bool stroke) {
+  if (stroke && !mask_op_has_path(op.kind)) throw std::invalid_argument("mask: a stroke's 'op' must be paint or erase");
   if (!mask_op_has_path(op.kind)) return;
-  if (op.path.empty()) throw std::invalid_argument("mask: 'path' must hold at least one point");
+  if (op.path.empty() && !stroke) throw std::invalid_argument("mask: 'path' must hold at least one point");
   for (const Point& p : op.path)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw std::invalid_argument("mask: 'path' must hold finite points");
@@ -47,9 +48,13 @@ double mask_falloff(double distance, double radius) {
   return t * t * (3 - 2 * t);
 }
 
-void MaskPainter::begin_run(size_t vertex_slots) {
-  mesh::resize_scratch(changed_mark_, vertex_slots, 0u);
-  mesh::resize_scratch(seen_, vertex_slots, 0u);
+void MaskPainter::begin_run(mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& changed) {
+  mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
+  if (!mask.is_valid()) throw std::logic_error("MaskPainter: the mesh has no mask");
+  mask_ = mask.vector().data();
+  changed_ = &changed;
+  mesh::resize_scratch(changed_mark_, mesh.vertices_size(), 0u);
+  mesh::resize_scratch(seen_, mesh.vertices_size(), 0u);
   if (++run_ == 0) {
     std::fill(changed_mark_.begin(), changed_mark_.end(), 0u);
     run_ = 1;
@@ -65,47 +70,48 @@ void MaskPainter::set(mesh::Vertex v, float value) {
   }
 }
 
-void MaskPainter::apply(mesh::SurfaceMesh& mesh, const MaskOp& op, const Locate& locate,
-                        std::vector<mesh::Vertex>& changed) {
-  mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
-  if (!mask.is_valid()) throw std::logic_error("MaskPainter: the mesh has no mask");
-  mask_ = mask.vector().data();
-  changed_ = &changed;
-  begin_run(mesh.vertices_size());
-  if (!mask_op_has_path(op.kind)) {
-    whole(mesh, op.kind);
+void MaskPainter::begin_path(const MaskOp& op) {
+  op_ = op;
+  op_.path.clear();
+  started_ = false;
+  travelled_ = 0;
+}
+
+void MaskPainter::add_point(mesh::SurfaceMesh& mesh, const Point& p, const Locate& locate,
+                            std::vector<mesh::Vertex>& changed) {
+  begin_run(mesh, changed);
+  if (!started_) {
+    started_ = true;
+    last_point_ = p;
+    seed_ = locate(p);
+    stamp(mesh, p, seed_);
     return;
   }
-  // Stamps at the first point, then every spacing x radius of travel along the path.
-  const double spacing = kMaskSpacing * op.radius;
-  mesh::Vertex seed = locate(op.path.front());
-  stamp(mesh, op, op.path.front(), seed);
-  double travelled = 0;
-  for (size_t i = 1; i < op.path.size(); ++i) {
-    const Point a = op.path[i - 1], b = op.path[i];
-    const double length = glm::length(b - a);
-    double along = spacing - travelled;  // distance from a to the next stamp
-    while (along <= length) {
-      const Point centre = a + (along / length) * (b - a);
-      seed = deform::walk_to_nearest_vertex(mesh, seed, centre);
-      // A walk can stop at a nearer vertex of another fold; the surface tree knows better.
-      if (glm::length(mesh.position(seed) - centre) >= op.radius) seed = locate(centre);
-      stamp(mesh, op, centre, seed);
-      along += spacing;
-    }
-    travelled = length - (along - spacing);
+  const double spacing = kMaskSpacing * op_.radius;
+  const Point a = last_point_;
+  const double length = glm::length(p - a);
+  double along = spacing - travelled_;  // from a to the next stamp
+  while (along <= length) {
+    const Point centre = a + (along / length) * (p - a);
+    seed_ = seed_.is_valid() ? deform::walk_to_nearest_vertex(mesh, seed_, centre) : locate(centre);
+    // A walk can stop at a nearer vertex of another fold; the surface tree knows better.
+    if (glm::length(mesh.position(seed_) - centre) >= op_.radius) seed_ = locate(centre);
+    stamp(mesh, centre, seed_);
+    along += spacing;
   }
+  travelled_ = length - (along - spacing);
+  last_point_ = p;
 }
 
 // The vertices inside the stamp's sphere that are connected to the seed through it (as a brush
 // stamp finds them: the far side of a thin part is left alone).
-void MaskPainter::stamp(const mesh::SurfaceMesh& mesh, const MaskOp& op, const Point& centre, mesh::Vertex seed) {
+void MaskPainter::stamp(const mesh::SurfaceMesh& mesh, const Point& centre, mesh::Vertex seed) {
   if (!seed.is_valid() || mesh.is_deleted(seed)) return;
   if (++stamp_run_ == 0) {
     std::fill(seen_.begin(), seen_.end(), 0u);
     stamp_run_ = 1;
   }
-  const double r2 = op.radius * op.radius;
+  const double r2 = op_.radius * op_.radius;
   auto inside = [&](mesh::Vertex v) {
     const Vec3 d = mesh.position(v) - centre;
     return glm::dot(d, d) < r2;
@@ -124,13 +130,14 @@ void MaskPainter::stamp(const mesh::SurfaceMesh& mesh, const MaskOp& op, const P
       }
     });
   for (mesh::Vertex v : queue_) {
-    const float amount = float(op.strength * mask_falloff(glm::length(mesh.position(v) - centre), op.radius));
+    const float amount = float(op_.strength * mask_falloff(glm::length(mesh.position(v) - centre), op_.radius));
     const float old = mask_[v.idx];
-    set(v, op.kind == MaskOpKind::Paint ? std::max(old, amount) : std::min(old, 1.0f - amount));
+    set(v, op_.kind == MaskOpKind::Paint ? std::max(old, amount) : std::min(old, 1.0f - amount));
   }
 }
 
-void MaskPainter::whole(const mesh::SurfaceMesh& mesh, MaskOpKind kind) {
+void MaskPainter::apply_whole(mesh::SurfaceMesh& mesh, MaskOpKind kind, std::vector<mesh::Vertex>& changed) {
+  begin_run(mesh, changed);
   if (kind == MaskOpKind::Blur) {
     // Every new value from the old ones: computed first, written after.
     next_.assign(mesh.vertices_size(), 0.0f);
@@ -155,7 +162,7 @@ void MaskPainter::whole(const mesh::SurfaceMesh& mesh, MaskOpKind kind) {
       case MaskOpKind::Fill: set(v, 1.0f); break;
       case MaskOpKind::Invert: set(v, 1.0f - m); break;
       case MaskOpKind::Sharpen: set(v, std::clamp(m * m * (3.0f - 2.0f * m), 0.0f, 1.0f)); break;
-      default: break;  // paint, erase: apply() handles them
+      default: break;  // paint, erase: add_point()
     }
   }
 }

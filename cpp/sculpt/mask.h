@@ -37,8 +37,9 @@ struct MaskOp {
   double radius = 0;        // paint / erase: absolute length
   double strength = 1;      // paint / erase: 0..1
 };
-// Throws std::invalid_argument "mask: 'radius' must be a positive number" and the like.
-void check_mask_op(const MaskOp& op);
+// Throws std::invalid_argument "mask: 'radius' must be a positive number" and the like. A
+// stroke (stroke = true: a paint or erase whose points come one by one) has no path yet.
+void check_mask_op(const MaskOp& op, bool stroke = false);
 
 // Stamps every this fraction of the radius along a paint / erase path.
 constexpr double kMaskSpacing = 0.25;
@@ -46,19 +47,29 @@ constexpr double kMaskSpacing = 0.25;
 // 1 over the inner half of the radius, then a smoothstep down to 0 at the radius.
 double mask_falloff(double distance, double radius);
 
+// Applies mask operations to a mesh whose mask exists (Session::mask creates it). Every call
+// appends the vertices whose value it changed to `changed`, once each.
 class MaskPainter {
  public:
   // A live vertex near p (the session answers from its surface tree).
   using Locate = std::function<mesh::Vertex(const Point& p)>;
-  // Applies op to mesh's mask, which must exist (Session::mask creates it). Appends every vertex
-  // whose value changed to `changed`, once each.
-  void apply(mesh::SurfaceMesh& mesh, const MaskOp& op, const Locate& locate, std::vector<mesh::Vertex>& changed);
+  // Clear, fill, invert, blur, sharpen.
+  void apply_whole(mesh::SurfaceMesh& mesh, MaskOpKind kind, std::vector<mesh::Vertex>& changed);
+  // A paint or erase stroke, point by point as the pointer moves (op.path is not read): the first
+  // point stamps at once, later ones every kMaskSpacing x radius along the segment from the last.
+  void begin_path(const MaskOp& op);
+  void add_point(mesh::SurfaceMesh& mesh, const Point& p, const Locate& locate, std::vector<mesh::Vertex>& changed);
 
  private:
-  void stamp(const mesh::SurfaceMesh& mesh, const MaskOp& op, const Point& centre, mesh::Vertex seed);
+  void stamp(const mesh::SurfaceMesh& mesh, const Point& centre, mesh::Vertex seed);
   void set(mesh::Vertex v, float value);
-  void whole(const mesh::SurfaceMesh& mesh, MaskOpKind kind);
-  void begin_run(size_t vertex_slots);
+  void begin_run(mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& changed);
+
+  MaskOp op_;  // of the stroke in progress (its path unused)
+  bool started_ = false;
+  Point last_point_{0.0};
+  double travelled_ = 0;  // since the last stamp
+  mesh::Vertex seed_;     // near the last stamp: the next one walks from it
 
   float* mask_ = nullptr;                  // the mesh's mask values, during apply()
   std::vector<mesh::Vertex>* changed_ = nullptr;

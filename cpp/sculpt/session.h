@@ -118,6 +118,13 @@ class Session {
   // Fully masked vertices never move under a brush or a grab, and no remeshing touches their
   // triangles; partly masked ones move by (1 - mask) of what they would.
   void mask(const MaskOp& op);
+  // A paint or erase stroke as the pointer moves, one undo step: mask_begin (op.path not read),
+  // one mask_stamp per pointer sample (a surface point), mask_end. mask(op) with a path does the
+  // same in one call. Grabs, brush strokes, undo and redo end a running mask stroke first.
+  void mask_begin(const MaskOp& op);
+  void mask_stamp(const Point& p);
+  void mask_end();
+  bool masking() const;
   // The mask value of every vertex slot (0 for all without a mask).
   float mask_value(mesh::Vertex v) const;
 
