@@ -227,6 +227,9 @@ export async function createSculptApp(container, options = {}) {
 
     get grab() { return grab; },
     get brush() { return brush; },
+    // The mask (tool 'mask', key M): clear(), fill(), invert(), blur(), sharpen(), stroke({path, erase}),
+    // begin/stamp/end, values(); each operation one undo step.
+    get mask() { return sculptor.mask; },
     get tool() { return sculptor.tool; },
     // frame(), set('front'|'back'|'left'|'right'|'top'|'bottom'), orthographic(bool), state()
     get view() { return views.view; },
@@ -381,6 +384,7 @@ export async function createSculptApp(container, options = {}) {
         radius: `${state.brushRadius}%`, strength: state.brushStrength, symmetry: state.symmetry,
       })),
       display: () => applyDisplay(),
+      mask: (op) => guard(() => sculptor.mask[op]()),
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
     });
@@ -415,7 +419,7 @@ export async function createSculptApp(container, options = {}) {
   function showToolState() {
     if (help) help.textContent = helpText(sculptor.tool);
     const p = sculptor.params;
-    const brushTool = sculptor.tool !== 'pull';
+    const brushTool = sculptor.tool !== 'pull' && sculptor.tool !== 'mask'; // (the mask brush has no symmetry)
     viewer.setMirror(brushTool && p.symmetry && p.symmetry !== 'off' ? p.symmetry : null, sculptor.buffers.boundingBox());
   }
   sculptor.addEventListener('tool', showToolState);

@@ -2,6 +2,7 @@
 // progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
 import GUI from 'lil-gui';
 import { SYMMETRY } from './settings.js';
+import { MASK_OPS } from './mask-api.js';
 
 export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
 
@@ -36,6 +37,10 @@ export function createPanel(parent, state, actions) {
   sculpt.add(state, 'brushStrength', 0.05, 1, 0.01).name('strength').onChange(() => actions.brush());
   sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
 
+  // The mask (tool M: paint, Ctrl/Alt erase; radius and strength are the brush's): masked parts never move.
+  const mask = gui.addFolder('Mask');
+  for (const op of MASK_OPS) mask.add({ [op]: () => actions.mask(op) }, op).name(`${op} mask`);
+
   const view = gui.addFolder('Display');
   view.add(state, 'matcap', actions.matcaps).name('matcap').onChange(() => actions.display());
   view.add(state, 'shading', ['matcap', 'standard']).name('material').onChange(() => actions.display());
@@ -60,7 +65,7 @@ export function createPanel(parent, state, actions) {
     },
     // Short views: only the Brush folder stays open (lil-gui scrolls the rest).
     compact() {
-      for (const f of [files, remesh, brush, view, history]) f.close();
+      for (const f of [files, remesh, brush, mask, view, history]) f.close();
       gui.domElement.classList.add('compact');
     },
     setHistory(canUndo, canRedo) {

@@ -176,19 +176,24 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
   return st;
 }
 
-MaskOp parse_mask_op(const json& m, const std::string& ctx) {
+MaskOp parse_mask_op(const json& m, const std::string& ctx, bool stroke) {
   if (!m.is_object()) throw std::invalid_argument(ctx + "must be an object");
   if (!m.contains("op")) fail(ctx, "op", "is missing");
   const auto kind = m["op"].is_string() ? parse_mask_op_kind(m["op"].get<std::string>()) : std::nullopt;
   if (!kind) fail(ctx, "op", std::string("must be one of ") + mask_op_list());
   MaskOp op;
   op.kind = *kind;
+  if (stroke && !mask_op_has_path(op.kind)) fail(ctx, "op", "must be paint or erase for a stroke");
   if (!mask_op_has_path(op.kind)) {
     check_keys(m, ctx, {"op"});
     return op;
   }
-  check_keys(m, ctx, {"op", "path", "radius", "strength"});
-  op.path = parse_path(m, ctx);
+  if (stroke) {
+    check_keys(m, ctx, {"op", "radius", "strength"});
+  } else {
+    check_keys(m, ctx, {"op", "path", "radius", "strength"});
+    op.path = parse_path(m, ctx);
+  }
   if (!m.contains("radius")) fail(ctx, "radius", "is missing");
   op.radius = positive_number(m["radius"], ctx, "radius");
   if (m.contains("strength")) {

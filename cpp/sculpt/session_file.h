@@ -80,8 +80,9 @@ struct SessionStep {
   MaskOp mask;        // Kind::Mask
 };
 
-// A mask operation as in a mask step (also what the wasm module's mask() takes); checked.
-MaskOp parse_mask_op(const nlohmann::json& m, const std::string& context = "mask: ");
+// A mask operation as in a mask step (also what the wasm module's mask() takes); checked. With
+// `stroke`, a paint or erase without its path (the wasm module's maskBegin).
+MaskOp parse_mask_op(const nlohmann::json& m, const std::string& context = "mask: ", bool stroke = false);
 nlohmann::json to_json(const MaskOp& op);
 
 struct SessionFile {
