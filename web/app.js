@@ -63,7 +63,7 @@ export async function createSculptApp(container, options = {}) {
   let sourceName = opts.model ? String(opts.model).split(/[?#]/)[0].split('/').pop() : 'mesh';
   const autosave = opts.autosave ? createAutosave(String(opts.autosave), {
     session, toaster, root: opts.ui ? root : null,
-    busy: () => sculptor.busy || session.grabbing() || session.brushing(),
+    busy: () => sculptor.busy || session.grabbing() || session.brushing() || session.masking(),
     sourceName: () => sourceName,
     counts: () => {
       if (qualityStale) refreshQuality();
@@ -162,7 +162,7 @@ export async function createSculptApp(container, options = {}) {
     clearTimeout(qualityTimer);
     qualityTimer = setTimeout(function settle() {
       if (disposed || !qualityStale) return;
-      if (session.grabbing() || session.brushing()) {
+      if (session.grabbing() || session.brushing() || session.masking()) {
         qualityTimer = setTimeout(settle, 250);
         return;
       }
