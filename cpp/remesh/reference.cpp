@@ -30,7 +30,17 @@ thread_local RemeshScratch scratch_pool;
 
 void Remesher::Impl::swap_scratch_with_pool() { std::swap(static_cast<RemeshScratch&>(*this), scratch_pool); }
 
-Remesher::Impl::~Impl() { swap_scratch_with_pool(); }
+// The arrays this remesher attached leave the caller's mesh with it: a remeshed mesh carries only
+// what it had before. (Removal is by array identity, so a mesh replaced meanwhile loses nothing.)
+Remesher::Impl::~Impl() {
+  swap_scratch_with_pool();
+  mesh.remove_vertex_property(sizing);
+  mesh.remove_vertex_property(vclass);
+  mesh.remove_vertex_property(scope);
+  mesh.remove_vertex_property(ref_hint);
+  mesh.remove_vertex_property(segment_hint);
+  mesh.remove_edge_property(feature);
+}
 
 Remesher::Impl::Impl(SurfaceMesh& m, const RemeshOptions& o) : mesh(m), opt(o) {
   swap_scratch_with_pool();

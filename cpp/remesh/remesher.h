@@ -70,7 +70,9 @@ struct RemeshReport {
 class Remesher {
  public:
   // The mesh's current surface becomes the reference for projection and sizing.
-  // Marks feature edges when options.feature_angle_deg > 0.
+  // Marks feature edges when options.feature_angle_deg > 0. The remesher attaches its arrays
+  // ("remesh:..." properties) to the mesh and removes them when it is destroyed, so one mesh has
+  // at most one live Remesher at a time (destroy the old one before making the next).
   Remesher(SurfaceMesh& mesh, const RemeshOptions& options);
   ~Remesher();
   Remesher(const Remesher&) = delete;

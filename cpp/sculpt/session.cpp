@@ -21,6 +21,7 @@
 #include "remesh/remesher.h"
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
+#include "sculpt/session_state.h"
 #include "sculpt/undo_log.h"
 
 namespace adasculpt::sculpt {
@@ -28,36 +29,6 @@ namespace adasculpt::sculpt {
 namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-// save_state() blob, little-endian (native on x86 and wasm; checked below):
-//   "ADSCSTAT" u32 version=2, f64 epsilon min_length max_length features diagonal,
-//   u32 undo count, u32 redo count, the current mesh as slots (undo_log.h: write_mesh_slots),
-//   then the steps (UndoLog::write_step): undo steps oldest..newest, redo steps farthest..nearest.
-constexpr char kStateMagic[8] = {'A', 'D', 'S', 'C', 'S', 'T', 'A', 'T'};
-constexpr uint32_t kStateVersion = 2;
-
-template <class T>
-void put(std::vector<uint8_t>& out, const T& v) {
-  const auto* p = reinterpret_cast<const uint8_t*>(&v);
-  out.insert(out.end(), p, p + sizeof(T));
-}
-
-struct StateReader {
-  const uint8_t* p;
-  size_t left;
-  [[noreturn]] static void fail(const std::string& what) {
-    throw std::invalid_argument("saved state: " + what);
-  }
-  template <class T>
-  T get() {
-    if (left < sizeof(T)) fail("truncated");
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    p += sizeof(T);
-    left -= sizeof(T);
-    return v;
-  }
-};
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -272,6 +243,7 @@ void Session::load(mesh::SurfaceMesh m) {
   Impl& s = *impl_;
   s.end_grab();
   if (m.has_garbage()) m.garbage_collection();
+  s.drop_remesher();  // before the mesh it holds arrays on goes
   s.mesh = std::move(m);
   s.has_mesh = true;
   s.new_base();
@@ -342,6 +314,7 @@ void Session::grab_begin(const Point& center, double handle_radius, double roi_r
   const geometry::TriangleTree::ClosestHit hit = tree.closest_point(center);
   s.push_undo();
   s.grab.begin(s.mesh, hit.point, tree.face_of(hit.triangle), handle_radius, roi_radius);
+  s.remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
   s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
   s.grabbing = true;
 }
@@ -365,7 +338,10 @@ void Session::brush_begin(const deform::BrushSettings& settings) {
   s.end_grab();
   s.brush.begin(settings);
   s.push_undo();
-  if (!s.remesher_kept) s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  if (!s.remesher_kept) {
+    s.remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
+    s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  }
   s.remesher_kept = false;
   s.brushing = true;
 }
@@ -588,78 +564,34 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
   const Impl& s = *impl_;
   s.require_mesh("save state");
   if (s.grabbing || s.brushing || s.masking) throw std::logic_error("save state: a grab or a stroke is in progress");
-  const uint32_t probe = 1;
-  if (*reinterpret_cast<const uint8_t*>(&probe) != 1) throw std::logic_error("save state: big-endian host");
-  // Newest undo steps first, then the nearest redo steps, while they fit the budget. Undo steps
-  // apply in order from the newest, so the kept ones are the newest run; likewise for redo.
-  const auto& undo = s.history.undo_list();
-  const auto& redo = s.history.redo_list();
-  size_t used = 0, n_undo = 0, n_redo = 0;
-  for (auto it = undo.rbegin(); it != undo.rend(); ++it, ++n_undo) {
-    const size_t b = UndoLog::step_serialized_size(**it);
-    if (used + b > max_history_bytes) break;
-    used += b;
-  }
-  if (n_undo == undo.size())
-    for (auto it = redo.rbegin(); it != redo.rend(); ++it, ++n_redo) {
-      const size_t b = UndoLog::step_serialized_size(**it);
-      if (used + b > max_history_bytes) break;
-      used += b;
-    }
-  std::vector<uint8_t> out;
-  out.reserve(64 + mesh_slots_serialized_size(s.mesh) + used);
-  for (char c : kStateMagic) out.push_back(uint8_t(c));  // (vector::insert of the char range trips a g++ 12 false -Wstringop-overflow)
-  put(out, kStateVersion);
-  for (double x : {s.options.epsilon, s.options.min_length, s.options.max_length, s.options.feature_angle_deg,
-                   s.diagonal})
-    put(out, x);
-  put(out, uint32_t(n_undo));
-  put(out, uint32_t(n_redo));
-  write_mesh_slots(s.mesh, out);
-  for (size_t i = undo.size() - n_undo; i < undo.size(); ++i) UndoLog::write_step(*undo[i], out);
-  for (size_t i = redo.size() - n_redo; i < redo.size(); ++i) UndoLog::write_step(*redo[i], out);
-  return out;
+  const StateSettings settings{s.options.epsilon, s.options.min_length, s.options.max_length,
+                               s.options.feature_angle_deg, s.diagonal};
+  return encode_session_state(settings, s.mesh, s.history, max_history_bytes);
 }
 
 void Session::restore_state(const uint8_t* data, size_t size) {
-  StateReader r{data, size};
-  if (size < 8 || std::memcmp(data, kStateMagic, 8) != 0) r.fail("not an adasculpt state (bad magic)");
-  r.p += 8;
-  r.left -= 8;
-  const uint32_t version = r.get<uint32_t>();
-  if (version != kStateVersion) r.fail("unsupported version " + std::to_string(version));
-  double v[5];
-  for (double& x : v) x = r.get<double>();
-  const uint32_t n_undo = r.get<uint32_t>(), n_redo = r.get<uint32_t>();
-  if (uint64_t(n_undo) + n_redo > r.left / 16) r.fail("truncated history");
-  mesh::SurfaceMesh current = read_mesh_slots(r.p, r.left);
-  // Every state the history reaches is built and validated (throws before any change).
-  UndoLog history;
-  history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
-  history.read_history(current, r.p, r.left, n_undo, n_redo);
-  if (r.left != 0) r.fail(std::to_string(r.left) + " unexpected bytes at the end");
-  remesh::RemeshOptions o = remesh::default_options_for(current);
+  DecodedState state = decode_session_state(data, size, kMaxUndoSteps, kMaxUndoBytes);
+  remesh::RemeshOptions o = remesh::default_options_for(state.mesh);
   o.adaptive = true;
-  o.epsilon = v[0];
-  o.min_length = v[1];
-  o.max_length = v[2];
-  o.feature_angle_deg = v[3];
-  if (!(v[4] > 0) || !std::isfinite(v[4])) r.fail("bad diagonal");
-  if (!(o.min_length <= o.max_length)) r.fail("'min_length' exceeds 'max_length'");
+  o.epsilon = state.settings.epsilon;
+  o.min_length = state.settings.min_length;
+  o.max_length = state.settings.max_length;
+  o.feature_angle_deg = state.settings.feature_angle_deg;
   try {
     remesh::check_options(o);
   } catch (const std::exception& e) {
-    r.fail(e.what());
+    throw std::invalid_argument(std::string("saved state: ") + e.what());
   }
   // Everything checked: commit (moves only).
   Impl& s = *impl_;
   s.end_grab();
-  s.mesh = std::move(current);
+  s.drop_remesher();  // before the mesh it holds arrays on goes
+  s.mesh = std::move(state.mesh);
   s.has_mesh = true;
-  s.history = std::move(history);
+  s.history = std::move(state.history);
   s.options = o;
   for (bool& rel : s.relative) rel = true;  // the blob holds lengths; the app's settings are percentages
-  s.diagonal = v[4];
+  s.diagonal = state.settings.diagonal;
   s.last = FrameTimings{};
   s.mesh_replaced();
 }

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "mesh/vertex_mask.h"
+#include "sculpt/byte_io.h"
 
 namespace adasculpt::sculpt {
 
@@ -14,6 +15,11 @@ using mesh::BasePropertyArray;
 using mesh::PropertyContainer;
 using mesh::SurfaceMesh;
 using mesh::Vertex;
+using byte_io::put;
+using byte_io::put_bytes;
+using byte_io::put_name;
+using Reader = byte_io::Reader;
+using byte_io::fail;
 
 namespace {
 
@@ -95,47 +101,6 @@ bool deleted_flag(const SurfaceMesh& m, int k, std::uint32_t i) {
 size_t deleted_count(const SurfaceMesh::DeletedCounts& c, int k) {
   return k == kVertex ? c.vertices : k == kEdge ? c.edges : k == kFace ? c.faces : 0;
 }
-
-// ---- little-endian byte writing/reading for persistence
-template <class T>
-void put(std::vector<std::uint8_t>& out, const T& v) {
-  const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-  out.insert(out.end(), p, p + sizeof(T));
-}
-void put_bytes(std::vector<std::uint8_t>& out, const std::vector<std::uint8_t>& b) {
-  put(out, std::uint64_t(b.size()));
-  out.insert(out.end(), b.begin(), b.end());
-}
-void put_name(std::vector<std::uint8_t>& out, const std::string& s) {
-  put(out, std::uint16_t(s.size()));
-  out.insert(out.end(), s.begin(), s.end());
-}
-[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument("saved state: " + what); }
-struct Reader {
-  const std::uint8_t*& p;
-  size_t& left;
-  template <class T>
-  T get() {
-    if (left < sizeof(T)) bad("truncated");
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    p += sizeof(T);
-    left -= sizeof(T);
-    return v;
-  }
-  std::vector<std::uint8_t> bytes(size_t n) {
-    if (n > left) bad("truncated");
-    std::vector<std::uint8_t> v(p, p + n);
-    p += n;
-    left -= n;
-    return v;
-  }
-  std::string name() {
-    const size_t n = get<std::uint16_t>();
-    const std::vector<std::uint8_t> b = bytes(n);
-    return std::string(b.begin(), b.end());
-  }
-};
 
 }  // namespace
 
@@ -392,12 +357,12 @@ bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, b
     const Step::Block& b = s.blocks[k];
     const size_t lo = std::min<size_t>(b.size_held, container(m, k).size());
     for (std::uint32_t i : b.slots)
-      if (i >= lo) bad("a step changes a slot the mesh does not have");
+      if (i >= lo) fail("a step changes a slot the mesh does not have");
     for (const Step::Values& v : b.values)
-      if (v.data.size() != b.slots.size() * size_t(v.bytes)) bad("a step's values do not match its slots");
+      if (v.data.size() != b.slots.size() * size_t(v.bytes)) fail("a step's values do not match its slots");
     if (b.size_held > container(m, k).size())
       for (const Step::Values& v : b.tail)
-        if (v.data.size() != (b.size_held - container(m, k).size()) * size_t(v.bytes)) bad("a step's new slots are cut");
+        if (v.data.size() != (b.size_held - container(m, k).size()) * size_t(v.bytes)) fail("a step's new slots are cut");
   }
   sync_arrays(m);
   std::vector<std::uint32_t> regrown[kKinds];
@@ -514,14 +479,14 @@ void write_values(std::vector<std::uint8_t>& out, const std::vector<UndoLog::Ste
 }
 std::vector<UndoLog::Step::Values> read_values(Reader& r) {
   const std::uint32_t n = r.get<std::uint32_t>();
-  if (n > 64) bad("too many arrays");
+  if (n > 64) fail("too many arrays");
   std::vector<UndoLog::Step::Values> vs(n);
   for (auto& v : vs) {
     v.name = r.name();
     v.bytes = r.get<std::uint32_t>();
-    if (v.bytes == 0 || v.bytes > 64) bad("bad element size");
+    if (v.bytes == 0 || v.bytes > 64) fail("bad element size");
     const std::uint64_t size = r.get<std::uint64_t>();
-    if (size % v.bytes) bad("bad array size");
+    if (size % v.bytes) fail("bad array size");
     v.data = r.bytes(size_t(size));
   }
   return vs;
@@ -543,7 +508,7 @@ void check_mask_values(const SurfaceMesh& m, const char* where) {
   const mesh::VertexProperty<float> mask = mesh::find_mask(m);
   if (!mask.is_valid()) return;
   for (Vertex v : m.vertices())
-    if (!(mask[v] >= 0.0f && mask[v] <= 1.0f)) bad(std::string(where) + "a mask value outside [0, 1]");
+    if (!(mask[v] >= 0.0f && mask[v] <= 1.0f)) fail(std::string(where) + "a mask value outside [0, 1]");
 }
 }  // namespace
 
@@ -588,23 +553,23 @@ SurfaceMesh read_mesh_slots(const std::uint8_t*& p, size_t& left) {
       // The mask is the one logged array a mesh gets later (mesh/vertex_mask.h).
       if (!a && k == kVertex && v.name == mesh::kMaskProperty && v.bytes == sizeof(float))
         a = m.add_vertex_property<float>(mesh::kMaskProperty, 0.0f).array();
-      if (!a) bad("unknown mesh array '" + v.name + "'");
-      if (v.data.size() != size_t(n) * v.bytes) bad("mesh array '" + v.name + "' is cut");
+      if (!a) fail("unknown mesh array '" + v.name + "'");
+      if (v.data.size() != size_t(n) * v.bytes) fail("mesh array '" + v.name + "' is cut");
       if (n) std::memcpy(a->raw(), v.data.data(), v.data.size());
     }
   }
-  if (container(m, kHalfedge).size() != 2 * container(m, kEdge).size()) bad("halfedges and edges disagree");
+  if (container(m, kHalfedge).size() != 2 * container(m, kEdge).size()) fail("halfedges and edges disagree");
   m.set_deleted_counts(read_counts(r));
   try {
     m.validate();
   } catch (const std::logic_error& e) {
-    bad(e.what());
+    fail(e.what());
   }
   for (Vertex v : m.vertices()) {
     const Point& q = m.position(v);
-    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) bad("non-finite position");
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) fail("non-finite position");
   }
-  if (m.n_faces() == 0) bad("a mesh without faces");
+  if (m.n_faces() == 0) fail("a mesh without faces");
   check_mask_values(m, "");
   return m;
 }
@@ -641,7 +606,7 @@ std::unique_ptr<UndoLog::Step> UndoLog::read_step(const std::uint8_t*& p, size_t
   Reader r{p, left};
   auto s = std::make_unique<Step>();
   const std::uint8_t type = r.get<std::uint8_t>();
-  if (type > 1) bad("unknown step type");
+  if (type > 1) fail("unknown step type");
   if (type == 1) {
     s->whole = std::make_unique<SurfaceMesh>(read_mesh_slots(p, left));
     return s;
@@ -649,7 +614,7 @@ std::unique_ptr<UndoLog::Step> UndoLog::read_step(const std::uint8_t*& p, size_t
   for (Step::Block& b : s->blocks) {
     b.size_held = r.get<std::uint32_t>();
     const std::uint64_t n = r.get<std::uint64_t>();
-    if (n > left / 4) bad("truncated step");
+    if (n > left / 4) fail("truncated step");
     b.slots.resize(size_t(n));
     const std::vector<std::uint8_t> raw = r.bytes(size_t(n) * 4);
     if (n) std::memcpy(b.slots.data(), raw.data(), raw.size());
@@ -678,11 +643,11 @@ void UndoLog::read_history(SurfaceMesh& m, const std::uint8_t*& p, size_t& left,
     try {
       work.validate();
     } catch (const std::logic_error& e) {
-      bad(std::string("a history step: ") + e.what());
+      fail(std::string("a history step: ") + e.what());
     }
     for (Vertex v : work.vertices()) {
       const Point& q = work.position(v);
-      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) bad("a history step: non-finite position");
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) fail("a history step: non-finite position");
     }
     check_mask_values(work, "a history step: ");
   };

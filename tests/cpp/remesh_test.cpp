@@ -66,8 +66,8 @@ TEST(Sizing, SphereGetsTheAnalyticLengthAfterRemeshing) {
   o.epsilon = eps;
   o.min_length = 0.001;
   o.max_length = 1.0;
-  o.iterations = 6;
-  remesh::remesh(m, o);
+  remesh::Remesher remesher(m, o);  // the sizing array lives as long as the remesher
+  for (int i = 0; i < 6; ++i) remesher.iterate();
   const double expected = std::sqrt(6 * eps * r - 3 * eps * eps);
   geometry::QualityReport q = geometry::quality_report(m);
   // Edges end between 4/5 and 4/3 of the target; relaxation centres them near the target.
@@ -85,14 +85,40 @@ TEST(Sizing, PlaneGetsMaxLength) {
   o.epsilon = 0.001;
   o.min_length = 0.01;
   o.max_length = 0.1;
-  o.iterations = 5;
-  remesh::remesh(m, o);
+  remesh::Remesher remesher(m, o);
+  for (int i = 0; i < 5; ++i) remesher.iterate();
   auto sizing = m.get_vertex_property<double>("remesh:sizing");
+  ASSERT_TRUE(sizing.is_valid());
   for (Vertex v : m.vertices())
     if (!m.is_boundary(v)) {
       EXPECT_NEAR(sizing[v], 0.1, 1e-9);
     }
   EXPECT_EQ(geometry::boundary_loops(m), 1);
+}
+
+// The caller's mesh keeps only its own arrays: everything the remesher attached (sizing, vertex
+// classes, hints, feature marks, mirror map) leaves with it.
+TEST(Remesh, LeavesNoArraysOnTheCallersMesh) {
+  SurfaceMesh m = mesh::make_icosphere(3, 1.0);
+  auto names = [](SurfaceMesh& mesh) {
+    std::vector<std::string> n;
+    for (const mesh::PropertyContainer* c : {&mesh.vertex_properties(), &mesh.halfedge_properties(),
+                                             &mesh.edge_properties(), &mesh.face_properties()})
+      for (size_t i = 0; i < c->n_arrays(); ++i) n.push_back(c->array(i)->name());
+    return n;
+  };
+  const std::vector<std::string> before = names(m);
+  remesh::RemeshOptions o = remesh::default_options_for(m);
+  o.feature_angle_deg = 30;
+  o.iterations = 2;
+  remesh::remesh(m, o);
+  EXPECT_EQ(names(m), before);
+  {
+    remesh::Remesher remesher(m, o);
+    remesher.iterate();
+    EXPECT_TRUE(m.get_vertex_property<double>("remesh:sizing").is_valid());  // while it works
+  }
+  EXPECT_EQ(names(m), before);
 }
 
 TEST(Remesh, UniformModeHitsTheTargetLength) {
