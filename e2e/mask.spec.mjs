@@ -100,6 +100,8 @@ test('mask tool by key M: the mouse paints a tinted mask, Ctrl erases, undo and 
   await page.keyboard.press('Control+z');
   expect(await maskValues(page)).toEqual(inverted);
   await page.evaluate(() => window.app.mask.clear());
+  // The same tool by name, and back.
+  expect(await page.evaluate(() => window.app.setTool('draw') && window.app.setTool('mask') && window.app.tool)).toBe('mask');
   expect(errors).toEqual([]);
 });
 
