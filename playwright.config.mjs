@@ -9,7 +9,8 @@ const port = Number(process.env.ADASCULPT_E2E_PORT || 4173);
 export default defineConfig({
   testDir: 'e2e',
   timeout: 60_000,
-  workers: 1,
+  // Two browsers at a time (ADASCULPT_E2E_WORKERS): the 2-core machine's second core was idle with one.
+  workers: Number(process.env.ADASCULPT_E2E_WORKERS || 2),
   retries: 0,
   forbidOnly: !!process.env.CI,
   reporter: [['list']],

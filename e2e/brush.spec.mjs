@@ -270,12 +270,11 @@ test('while stroking, at most one call into wasm per animation frame', async ({ 
   await shot(page, 'cursor');
 });
 
-// Known defect (issue 18, undo as a log): after a replayed stroke is undone, the same stroke gives
-// another result than the replay did (sphere, inflate: 2,674 vertices instead of 2,776), although the
-// undone mesh exports byte for byte as before: some state the log does not bring back after a replay
-// steers the remesher. (A live stroke, undone and drawn again, differs from its first result too.)
-// test.fail: this test passes while the defect is there and tells us when it is fixed.
-test.fail('a replayed stroke, undone and drawn again, gives the same mesh as the replay', async ({ page }) => {
+// Once a defect (issue 18): after a replayed stroke was undone, the same stroke gave another result
+// (sphere, inflate: 2,674 vertices instead of 2,776): the next stroke's remesher took over the arrays
+// the last one had left on the mesh. A remesher now removes its arrays (native test:
+// SculptUndoLog.AStrokeUndoneAndDrawnAgainGivesTheSameMesh).
+test('a replayed stroke, undone and drawn again, gives the same mesh as the replay', async ({ page }) => {
   await open(page);
   const same = await page.evaluate(async () => {
     const app = window.app;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Build one or more configurations of the same CMake project:
 #   scripts/build.sh [native|asan|wasm|wasm-debug|all]...   (default: native wasm; "all" = native asan wasm)
-# Build dirs: build/native (Release), build/asan (Debug + ASan/UBSan), build/wasm (Release, em++),
+# Build dirs: build/native (Release), build/asan (Debug -O1 + ASan/UBSan, clang: also the fuzz targets), build/wasm (Release, em++),
 # build/wasm-debug (-sASSERTIONS=2 -g). Override the root with ADASCULPT_BUILD_ROOT (e.g. build/infra) to keep
 # a private set of build dirs; the wasm builds publish public/wasm/adasculpt.{js,wasm} unless
 # ADASCULPT_PUBLISH_WASM=OFF. Parallelism: ADASCULPT_JOBS (default 2 = this machine's cores).
@@ -34,7 +34,11 @@ build_native() {
 }
 
 build_asan() {
-  configure_native "$ROOT/asan" -DCMAKE_BUILD_TYPE=Debug -DADASCULPT_SANITIZE=ON
+  # clang when it is there: its objects also make the libFuzzer targets (scripts/fuzz.sh), so the fuzzers
+  # cost no second compile of the core.
+  local cxx=()
+  command -v clang++ >/dev/null 2>&1 && cxx=(-DCMAKE_CXX_COMPILER="$(command -v clang++)")
+  configure_native "$ROOT/asan" -DCMAKE_BUILD_TYPE=Debug -DADASCULPT_SANITIZE=ON "${cxx[@]}"
   cmake --build "$ROOT/asan" -j "$JOBS"
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (tests/fuzz/CMakeLists.txt: clang++ with -fsanitize=fuzzer,address,undefined)
-# and runs each for a bounded time on its seed corpus (tests/fuzz/corpus/<target>/) plus every saved
-# regression input (tests/fuzz/regressions/<target>/).
+# Runs the libFuzzer targets (built in the sanitized clang build, build/asan: scripts/build.sh asan; the
+# core's objects there carry the fuzzer's coverage hooks) for a bounded time each on its seed corpus
+# (tests/fuzz/corpus/<target>/) plus every saved regression input (tests/fuzz/regressions/<target>/),
+# ADASCULPT_JOBS targets at a time (libFuzzer itself uses one core).
 #
 #   scripts/fuzz.sh [target...]        targets: off obj stl ply load_mesh session_file (default: all)
 #
@@ -11,32 +12,26 @@
 # bounded, and an input that timed out is re-run alone with a generous limit; only if it still does not
 # finish is it reported as a hang. Executions per target are printed in a closing table.
 # Environment:
-#   ADASCULPT_FUZZ_SECONDS=N    seconds per target (default 10: about a minute for the six targets)
-#   ADASCULPT_FUZZ_ARGS="..."   extra libFuzzer flags (e.g. "-jobs=2" or "-max_len=65536")
-#   ADASCULPT_BUILD_ROOT=DIR    build root (default build): binaries in DIR/fuzz, working corpora and logs
+#   ADASCULPT_FUZZ_SECONDS=N    seconds per target (default 10)
+#   ADASCULPT_FUZZ_ARGS="..."   extra libFuzzer flags (e.g. "-max_len=65536")
+#   ADASCULPT_BUILD_ROOT=DIR    build root (default build): binaries in DIR/asan, working corpora and logs
 #                               in DIR/fuzz/work (never written into tests/)
+#   ADASCULPT_JOBS=N            targets run at once (default 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${ADASCULPT_FUZZ_SECONDS:-10}
 ROOT=${ADASCULPT_BUILD_ROOT:-build}
-BUILD=$ROOT/fuzz
-WORK=$BUILD/work
+JOBS=${ADASCULPT_JOBS:-2}
+BUILD=$ROOT/asan
+WORK=$ROOT/fuzz/work
 ALL=(off obj stl ply load_mesh session_file)
 TARGETS=("$@")
 ((${#TARGETS[@]})) || TARGETS=("${ALL[@]}")
 read -r -a EXTRA <<<"${ADASCULPT_FUZZ_ARGS:-}"
 
-CXX=${ADASCULPT_FUZZ_CXX:-}
-if [ -z "$CXX" ]; then
-  for c in clang++ clang++-14; do command -v "$c" >/dev/null && { CXX=$(command -v "$c"); break; }; done
-fi
-if [ -z "$CXX" ]; then
-  echo "fuzz: clang++ not found (apt: clang libclang-rt-14-dev)" >&2
-  exit 1
-fi
-
-cmake -S tests/fuzz -B "$BUILD" -G Ninja -DCMAKE_CXX_COMPILER="$CXX" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$BUILD" -j "${ADASCULPT_JOBS:-2}"
+command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (apt: clang libclang-rt-14-dev)" >&2; exit 1; }
+bash scripts/build.sh asan >/dev/null  # nothing to do when the asan stage built it
+[ -x "$BUILD/fuzz_off" ] || { echo "fuzz: $BUILD has no fuzz targets (is it a clang build?)" >&2; exit 1; }
 
 # libFuzzer's own options. -timeout: one input; -rss_limit_mb: also the per-allocation limit, so a reader
 # that believes an absurd header count and allocates gigabytes is a finding.
@@ -56,23 +51,36 @@ keep() {  # artifact, target
   echo "tests/fuzz/regressions/$2/$(basename "$1")"
 }
 
+run_target() {  # target: runs it, leaves the exit code in $WORK/<t>/rc
+  local t=$1 bin=$BUILD/fuzz_$1 dict=()
+  [ -f "tests/fuzz/dict/$t.dict" ] && dict=(-dict="tests/fuzz/dict/$t.dict")
+  local rc=0
+  # The first corpus dir is the writable working corpus; seeds and regressions are read only.
+  "$bin" "${FUZZ_FLAGS[@]}" "${dict[@]}" "${EXTRA[@]}" -artifact_prefix="$WORK/$t/artifacts/" \
+    "$WORK/$t/corpus" "tests/fuzz/corpus/$t" "tests/fuzz/regressions/$t" >"$WORK/$t/log.txt" 2>&1 || rc=$?
+  echo "$rc" >"$WORK/$t/rc"
+}
+
+for t in "${TARGETS[@]}"; do
+  [ -x "$BUILD/fuzz_$t" ] || { echo "fuzz: unknown target '$t' (known: ${ALL[*]})" >&2; exit 2; }
+  mkdir -p "$WORK/$t/corpus" "$WORK/$t/artifacts" "tests/fuzz/regressions/$t"
+  rm -f "$WORK/$t/artifacts/"* "$WORK/$t/rc"
+done
+echo "=== fuzz ${TARGETS[*]} (${SECONDS_PER_TARGET} s each, $JOBS at a time)"
+running=0
+for t in "${TARGETS[@]}"; do
+  if ((running >= JOBS)); then wait -n; running=$((running - 1)); fi
+  run_target "$t" &
+  running=$((running + 1))
+done
+wait
+
 failed=()
 rows=()
 for t in "${TARGETS[@]}"; do
   bin=$BUILD/fuzz_$t
-  [ -x "$bin" ] || { echo "fuzz: unknown target '$t' (known: ${ALL[*]})" >&2; exit 2; }
-  mkdir -p "$WORK/$t/corpus" "$WORK/$t/artifacts" "tests/fuzz/regressions/$t"
-  rm -f "$WORK/$t/artifacts/"*
-  dict=()
-  [ -f "tests/fuzz/dict/$t.dict" ] && dict=(-dict="tests/fuzz/dict/$t.dict")
   log=$WORK/$t/log.txt
-  echo "=== fuzz $t (${SECONDS_PER_TARGET} s)"
-  set +e
-  # The first corpus dir is the writable working corpus; seeds and regressions are read only.
-  "$bin" "${FUZZ_FLAGS[@]}" "${dict[@]}" "${EXTRA[@]}" -artifact_prefix="$WORK/$t/artifacts/" \
-    "$WORK/$t/corpus" "tests/fuzz/corpus/$t" "tests/fuzz/regressions/$t" >"$log" 2>&1
-  rc=$?
-  set -e
+  rc=$(cat "$WORK/$t/rc" 2>/dev/null || echo 99)
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1 || true)
   cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 | cut -d' ' -f2 || true)
   verdict=ok

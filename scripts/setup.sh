@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 APT_PKGS=(g++ cmake ninja-build libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libglm-dev
-          nlohmann-json3-dev libcli11-dev emscripten node-acorn chromium nodejs npm)
+          nlohmann-json3-dev libcli11-dev emscripten node-acorn chromium clang libclang-rt-14-dev nodejs npm)
 missing=()
 for p in "${APT_PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

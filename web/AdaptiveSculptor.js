@@ -25,9 +25,11 @@ import { GrabTool } from './grab-tool.js';
 import { BrushTool, checkTool, createBrushApi } from './brush-tool.js';
 import { BrushCursor } from './brush-cursor.js';
 import { createMaskApi } from './mask-api.js';
+import { raycastSurface } from './surface-raycast.js';
 import {
   TOOL_DEFAULTS, RADIUS_RANGE_PCT, ROI_RANGE_PCT, lengthToPercent, checkStrength, checkSymmetry,
 } from './settings.js';
+import { FEEL_DEFAULTS, FEEL_KEYS, checkFeel, detailLength } from './brush-feel.js';
 
 const CORE_KEYS = ['epsilon', 'minLength', 'maxLength', 'features'];
 const TOOL_KEYS = ['tool', 'radius', 'strength', 'symmetry', 'handleRadius', 'roiRadius'];
@@ -45,7 +47,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     const sculptor = new AdaptiveSculptor(mesh, camera, Module, options);
     try {
       if (mesh.geometry.attributes.position) sculptor.loadGeometry(mesh.geometry);
-      sculptor.setParams(pick(options, [...CORE_KEYS, ...TOOL_KEYS]));
+      sculptor.setParams(pick(options, [...CORE_KEYS, ...TOOL_KEYS, ...FEEL_KEYS]));
     } catch (e) {
       sculptor.dispose();
       throw e;
@@ -77,6 +79,9 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     this._raycaster = new THREE.Raycaster();
     this._ndc = new THREE.Vector2();
     for (const k of ['radius', 'handleRadius', 'roiRadius']) this._pct[k] = lengthToPercent(TOOL_DEFAULTS[k], 1, k);
+    // Falloff, spacing, stabiliser, detail mode and sizes (web/brush-feel.js); constantDetail in percent.
+    this._feel = { ...FEEL_DEFAULTS, constantDetail: lengthToPercent(FEEL_DEFAULTS.constantDetail, 1, 'constantDetail') };
+    this._touchOrbit = null;  // OrbitControls' one-finger action while a finger rests on the model
 
     const sculptor = this;
     const view = {
@@ -84,6 +89,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       viewDirection: () => this._viewDirection(),
       viewPlane: (p) => this._viewPlane(p),
       setOrbit: (on) => { if (this.controls) this.controls.enabled = on; },
+      holdTouchOrbit: (hold) => this._holdTouchOrbit(hold),
       schedule: () => this._schedule(),
       changed: () => this.dispatchEvent({ type: 'change' }),
       cursorParent: mesh,
@@ -109,11 +115,12 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     // The mask brush is the same pointer tool: Ctrl/Alt erase instead of invert, points without pressure.
     const masking = () => this._tool === 'mask';
     this.brushTool = new BrushTool(view, {
-      begin: ({ invert }) => this._guard(() => {
+      begin: ({ invert, point }) => this._guard(() => {
         if (masking()) this.mask.begin({ erase: invert });
-        else this.brush.begin({ invert });
+        else this.brush.begin({ invert, detail: this.detailLength(point) });
         return true;
       }) === true,
+      stabilizer: () => this._feel.stabilizer,
       stamp: guard((samples) => (masking() ? this.mask.stamp(withoutPressure(samples)) : this.brush.stamp(samples))),
       end: guard(() => (masking() ? this.mask.end() : this.brush.end())),
       busy: () => this.busy, // no wasm call: without a mesh there is no geometry to hit
@@ -183,7 +190,8 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       stroke,
       defaults: () => ({
         tool: this._tool === 'pull' || this._tool === 'mask' ? 'draw' : this._tool, radius: this.radius,
-        strength: this._strength, symmetry: this._symmetry,
+        strength: this._strength, symmetry: this._symmetry, spacing: this._feel.spacing, falloff: this._feel.falloff,
+        detail: this.detailLength(),
       }),
     });
     this.mask = createMaskApi({
@@ -222,7 +230,9 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       epsilon: s ? s.epsilon : null, minLength: s ? s.minLength : null, maxLength: s ? s.maxLength : null,
       features: s ? s.features : null, diagonal: this._diagonal,
       tool: this._tool, radius: this.radius, strength: this._strength, symmetry: this._symmetry,
-      handleRadius: this.handleRadius, roiRadius: this.roiRadius, percent: { ...this._pct },
+      handleRadius: this.handleRadius, roiRadius: this.roiRadius,
+      ...this._feel, constantDetail: (this._feel.constantDetail / 100) * this._diagonal,
+      percent: { ...this._pct, constantDetail: this._feel.constantDetail },
     };
   }
 
@@ -231,6 +241,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
   setParams(p = {}) {
     const core = {};
     const pct = {};
+    const feel = {};
     let strength, symmetry;
     for (const [k, v] of Object.entries(p)) {
       if (v === undefined) continue;
@@ -239,6 +250,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       else if (k === 'strength') strength = checkStrength(v);
       else if (k === 'symmetry') symmetry = checkSymmetry(v);
       else if (k === 'tool') checkTool(v);
+      else if (FEEL_KEYS.includes(k)) feel[k] = checkFeel(k, v, this._diagonal, lengthToPercent);
       else throw new Error(`setParams: unknown parameter '${k}'`);
     }
     if (Object.keys(core).length) {
@@ -246,6 +258,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       this.session.setSettings(core);
     }
     Object.assign(this._pct, pct);
+    Object.assign(this._feel, feel);
     if (strength !== undefined) this._strength = strength;
     if (symmetry !== undefined) this._symmetry = symmetry;
     if (p.tool !== undefined) this.setTool(p.tool);
@@ -296,10 +309,12 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
   // `remesh --iterations` result exactly: the remesher keeps its reference surface across the
   // iterations). With onProgress, {done: 0, total} is reported and one animation frame passes (the
   // page can show it) before the call, {done: total, total} after it. Resolves with the mesh's counts.
-  async remesh({ iterations = 5, onProgress } = {}) {
+  // detail > 0: every edge towards that absolute length (Session.remeshDetail) instead of the settings.
+  async remesh({ iterations = 5, detail = 0, onProgress } = {}) {
     if (this.busy) throw new Error('a remesh is already running');
     if (this._stroke) throw new Error('remesh: a stroke is under way');
     if (!(Number.isInteger(iterations) && iterations >= 1)) throw new Error('remesh: iterations must be a positive integer');
+    if (!(typeof detail === 'number' && detail >= 0 && Number.isFinite(detail))) throw new Error('remesh: detail must be a length >= 0');
     this._busy = { done: 0, total: iterations };
     try {
       if (onProgress) {
@@ -307,7 +322,8 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
         await new Promise((resolve) => requestAnimationFrame(resolve));
       }
       if (!this._disposed) {
-        this.session.remesh(iterations);
+        if (detail > 0) this.session.remeshDetail(iterations, detail);
+        else this.session.remesh(iterations);
         this._sync();
         this._busy.done = iterations;
         if (onProgress) onProgress({ ...this._busy });
@@ -318,6 +334,21 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     if (this._disposed) return { vertices: 0, faces: 0 };
     this.buffers.updateBounds();
     return this._counts();
+  }
+
+  // The detail flood fill: the whole mesh remeshed at the detail strokes get now (detailLength();
+  // 'relative' mode: the remesh settings), in one call and one undo step, with remesh()'s progress.
+  floodFill({ iterations = 5, onProgress } = {}) {
+    return this.remesh({ iterations, detail: this.detailLength(), onProgress });
+  }
+
+  // The edge length a stroke at `point` (the mesh's coordinates; default: the middle of its bounds)
+  // remeshes to under the current detail mode; 0 in 'relative' mode (the remesh settings).
+  detailLength(point) {
+    return detailLength(this._feel, {
+      diagonal: this._diagonal, radius: this.radius,
+      pixelSize: () => this._pixelSize(point || this.buffers.boundingBox().getCenter(new THREE.Vector3())),
+    });
   }
 
   // Runs a session file (text or object, as `adasculpt replay` reads it); returns its report.
@@ -433,6 +464,39 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     const world = point.clone().applyMatrix4(this.mesh.matrixWorld);
     const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(this.camera.getWorldDirection(new THREE.Vector3()), world);
     return plane.applyMatrix4(this._inverse);
+  }
+
+  // The surface point under a pointer position (client pixels) in world coordinates, or null (the
+  // JS raycast the brushes use; no wasm call). Needs connect().
+  surfacePoint(clientX, clientY) {
+    if (!this.domElement || !this.buffers.allocated) return null;
+    const hit = raycastSurface(this.buffers.geometry, this._ray(clientX, clientY));
+    return hit ? hit.point.clone().applyMatrix4(this.mesh.matrixWorld) : null;
+  }
+
+  // The size of one screen pixel at a point of the mesh (its own coordinates and units): perspective,
+  // it grows with the distance from the camera; orthographic, the same everywhere.
+  _pixelSize(point) {
+    const height = (this.domElement && this.domElement.clientHeight) || 1;
+    this._updateInverse();
+    const world = point.clone().applyMatrix4(this.mesh.matrixWorld);
+    const c = this.camera;
+    const span = c.isOrthographicCamera ? (c.top - c.bottom) / c.zoom
+      : (2 * Math.tan(THREE.MathUtils.degToRad(c.fov) / 2) * c.position.distanceTo(world)) / c.zoom;
+    return span / height / this.mesh.matrixWorld.getMaxScaleOnAxis();
+  }
+
+  // Touch: OrbitControls' one-finger orbit is held off while a finger rests on the model (it sculpts).
+  _holdTouchOrbit(hold) {
+    const t = this.controls && this.controls.touches;
+    if (!t) return;
+    if (hold && this._touchOrbit === null) {
+      this._touchOrbit = t.ONE;
+      t.ONE = null; // OrbitControls: no one-finger action; two fingers still orbit and zoom
+    } else if (!hold && this._touchOrbit !== null) {
+      t.ONE = this._touchOrbit;
+      this._touchOrbit = null;
+    }
   }
 
   _pick(ray) {

@@ -26,6 +26,36 @@ export type ToolName = 'pull' | BrushToolName | 'mask';
 /** Mirror strokes across the plane x, y or z = 0 of the mesh's own coordinates; `'off'` (or `'none'`) for none. */
 export type Symmetry = 'x' | 'y' | 'z' | 'off' | 'none';
 
+/**
+ * How a stamp fades from its centre to its rim (q = distance / radius): `'smooth'` (1 − q²)³ (default,
+ * every stroke before presets), `'sphere'` √(1 − q²), `'sharp'` (1 − q)², `'linear'` 1 − q, `'constant'` 1.
+ */
+export type BrushFalloff = 'smooth' | 'sphere' | 'sharp' | 'linear' | 'constant';
+
+/**
+ * What edge length strokes (and the detail flood fill) remesh to: `'relative'` the remesh settings
+ * (ε, min/max length; default); `'constant'` `constantDetail`; `'brush'` `brushDetail` percent of the
+ * brush radius; `'pixels'` `pixelDetail` screen pixels at the brush (the size follows the zoom).
+ */
+export type DetailMode = 'relative' | 'constant' | 'brush' | 'pixels';
+
+/** Brush feel and detail (web/brush-feel.js). */
+export interface FeelParams {
+  /** Default `'smooth'`. */
+  falloff?: BrushFalloff;
+  /** A stamp every `spacing` × radius of pointer travel, 0.05..4 (default 0.25). */
+  spacing?: number;
+  /** Stroke stabiliser (lazy mouse): the brush trails the pointer on a string this many screen pixels long; 0 (default) off, up to 200. */
+  stabilizer?: number;
+  detailMode?: DetailMode;
+  /** The `'constant'` mode's edge length. Default `"0.8%"`. */
+  constantDetail?: Length;
+  /** The `'brush'` mode's edge length in percent of the brush radius, 1..100 (default 15). */
+  brushDetail?: number;
+  /** The `'pixels'` mode's edge length in screen pixels, 1..100 (default 8). */
+  pixelDetail?: number;
+}
+
 /** Remeshing settings (the method's parameters). */
 export interface RemeshParams {
   /** Approximation tolerance ε: the sizing field is L = sqrt(6ε/κ − 3ε²). Default `"0.05%"`. */
@@ -73,8 +103,16 @@ export interface SculptorParams {
   symmetry: 'x' | 'y' | 'z' | 'off';
   handleRadius: number;
   roiRadius: number;
+  falloff: BrushFalloff;
+  spacing: number;
+  stabilizer: number;
+  detailMode: DetailMode;
+  /** Absolute (its percent in `percent.constantDetail`). */
+  constantDetail: number;
+  brushDetail: number;
+  pixelDetail: number;
   /** The tool lengths in percent of the diagonal (they keep their share when another mesh is loaded). */
-  percent: { radius: number; handleRadius: number; roiRadius: number };
+  percent: { radius: number; handleRadius: number; roiRadius: number; constantDetail: number };
 }
 
 /** Milliseconds of one frame in the core (`stamps`: brush stamps run in it; 0 for grab frames). */
@@ -148,8 +186,12 @@ export interface BrushSettings {
   symmetry?: Symmetry;
   /** Draw/inflate/crease inwards, flatten/pinch push away. */
   invert?: boolean;
-  /** A stamp every `spacing` × radius of travel (0.05..4, default 0.25). */
+  /** A stamp every `spacing` × radius of travel (0.05..4; default: the current `spacing`, 0.25). */
   spacing?: number;
+  /** Default: the current `falloff`. */
+  falloff?: BrushFalloff;
+  /** This stroke's edge length (absolute); 0: the remesh settings. Default: the current detail mode's (`detailLength()`). */
+  detail?: number;
 }
 
 export interface BrushStroke extends BrushSettings {
@@ -222,7 +264,7 @@ export type ReplayReport = Record<string, unknown>;
 /** A session file: `{"version": 1, "settings": {...}, "steps": [{"grab": ...}, {"brush": ...}, {"remesh": ...}, {"mask": {"op": ...}}, {"undo": n}, {"redo": n}]}` (cpp/sculpt/session_file.h). */
 export type SessionFile = string | { version: 1; settings?: Record<string, unknown>; steps: Record<string, unknown>[] };
 
-export interface SculptorOptions extends RemeshParams, ToolParams {
+export interface SculptorOptions extends RemeshParams, ToolParams, FeelParams {
   /**
    * URL of the WebAssembly loader `adasculpt.js` (adasculpt.wasm next to it). Default: the package's
    * own copy, found with `new URL(..., import.meta.url)` (bundlers copy both files into the build).
@@ -230,8 +272,12 @@ export interface SculptorOptions extends RemeshParams, ToolParams {
   wasmUrl?: string;
   /** Where keyboard shortcuts are heard (`[ ]` radius, `- =` strength, R/S/G during a pull); default none. */
   keyTarget?: EventTarget | null;
-  /** The host's OrbitControls (or anything with `enabled`): disabled while a stroke runs. */
-  controls?: { enabled: boolean } | null;
+  /**
+   * The host's OrbitControls (or anything with `enabled`): disabled while a stroke runs; with `touches`,
+   * its one-finger action is held off while a finger rests on the model (a finger on the model sculpts,
+   * two fingers are the controls').
+   */
+  controls?: { enabled: boolean; touches?: { ONE?: unknown } } | null;
   /** Also keep a wireframe index geometry (`buffers.lines`). */
   wireframe?: boolean;
   /** Draw the Pull tool's handle/region preview yourself (default: rings on the surface). */
@@ -287,7 +333,7 @@ export declare class AdaptiveSculptor extends EventDispatcher<SculptorEventMap> 
   /** False (nothing changes) while a stroke runs; throws on an unknown name. */
   setTool(name: ToolName): boolean;
   /** Checks every value first, then applies them; throws on an unknown key or a bad value. */
-  setParams(params: RemeshParams & ToolParams): SculptorParams;
+  setParams(params: RemeshParams & ToolParams & FeelParams): SculptorParams;
   /** Replaces the surface by this geometry's triangles (welded by position); history and settings start afresh. */
   loadGeometry(geometry: BufferGeometry): void;
   /** Replaces the surface by a mesh file (OBJ, STL, PLY, OFF; `name`'s extension gives the format). */
@@ -302,7 +348,19 @@ export declare class AdaptiveSculptor extends EventDispatcher<SculptorEventMap> 
    * core call of `iterations` (default 5), one undo step, the CLI's `remesh --iterations` result.
    * With `onProgress`: reported before (`done: 0`, one animation frame passes) and after the same single call.
    */
-  remesh(options?: { iterations?: number; onProgress?: (p: { done: number; total: number }) => void }): Promise<MeshCounts>;
+  remesh(options?: { iterations?: number; detail?: number; onProgress?: (p: { done: number; total: number }) => void }): Promise<MeshCounts>;
+  /**
+   * The detail flood fill: `remesh` with `detail: detailLength()`, the whole mesh at the edge length strokes
+   * get now (in `'relative'` mode, the remesh settings). One core call, one undo step.
+   */
+  floodFill(options?: { iterations?: number; onProgress?: (p: { done: number; total: number }) => void }): Promise<MeshCounts>;
+  /**
+   * The edge length (absolute) a stroke at `point` (the mesh's coordinates; default the middle of its
+   * bounds, which only matters in `'pixels'` mode) remeshes to; 0 in `'relative'` mode.
+   */
+  detailLength(point?: Vector3): number;
+  /** The surface point under a pointer position (client pixels), world coordinates; null off the model or before `connect`. */
+  surfacePoint(clientX: number, clientY: number): Vector3 | null;
   /** Runs a session file on the current mesh. */
   replay(file: SessionFile): ReplayReport;
   /** Sends the pointer samples queued since the last frame to the core now (it also schedules itself). */
@@ -365,7 +423,7 @@ export interface Autosave {
 }
 
 /** `setParams` of the app: the sculptor's, plus the older names `brushRadius`/`brushStrength` of `radius`/`strength`. */
-export interface SculptParams extends RemeshParams, Omit<ToolParams, 'tool'> {
+export interface SculptParams extends RemeshParams, Omit<ToolParams, 'tool'>, FeelParams {
   brushRadius?: Length;
   brushStrength?: number;
 }
@@ -418,6 +476,8 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
    * The camera. `frame()`: the model fills the free part of the canvas (F, Home); `set(name)`: an axis
    * view, framed (Shift+1–6, numpad 1/3/7 and Ctrl+numpad); `orthographic(on?)`: switches (O, numpad 5)
    * and returns whether it is. Zoom limits follow the model's size (set by each frame/set/load).
+   * An orbit drag starting over the model (middle button) turns around the surface point under the press;
+   * `state().pivot` is the last such point (world), null before.
    */
   readonly view: {
     frame(): void;
@@ -426,6 +486,7 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
     state(): {
       position: number[]; target: number[]; up: number[]; distance: number; zoom: number; orthographic: boolean;
       minDistance: number; maxDistance: number; minZoom: number; maxZoom: number; modelRadius: number;
+      pivot: number[] | null;
     };
   };
   /** Looks (panel: Display): matcap ('clay', 'red wax', 'jade', 'blue steel', 'chalk'), material, flat shading, wireframe overlay. Returns the current ones. */
@@ -433,6 +494,8 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
     { matcap: string; shading: 'matcap' | 'standard'; flat: boolean; wireframe: boolean };
   /** Whole-mesh remeshing: one core call of `iterations` (the CLI's result, one undo step) with a progress display. */
   remesh(options?: { iterations?: number }): Promise<SculptStats>;
+  /** The detail flood fill (panel › Detail): `sculptor.floodFill` with the panel's progress; one undo step. */
+  floodFill(options?: { iterations?: number }): Promise<SculptStats>;
   undo(): boolean;
   redo(): boolean;
   replay(session: SessionFile): Promise<ReplayReport>;
@@ -506,6 +569,8 @@ export interface Session {
   /** The mask per vertex slot, a view into wasm memory like `positions()`. */
   maskValues(): Float32Array;
   remesh(iterations: number): void;
+  /** `remesh` towards a constant edge length `detail` (absolute; 0: the settings). */
+  remeshDetail(iterations: number, detail: number): void;
   undo(): boolean;
   redo(): boolean;
   canUndo(): boolean;

@@ -12,6 +12,8 @@ import { createFileInput, createToaster, download } from './file-io.js';
 import { STYLE } from './style.js';
 import { createAutosave, noAutosave } from './autosave.js';
 import { createViewControls } from './view-controls.js';
+import { createCameraGestures } from './camera-gestures.js';
+import { FEEL_KEYS } from './brush-feel.js';
 import { helpText } from './help-text.js';
 import { checkMemory, isOutOfMemory, outOfMemoryMessage } from './memory-estimate.js';
 import { TOOL_DEFAULTS, lengthToPercent } from './settings.js';
@@ -133,6 +135,7 @@ export async function createSculptApp(container, options = {}) {
     state.brushStrength = p.strength;
     state.symmetry = p.symmetry;
     state.tool = p.tool;
+    for (const k of FEEL_KEYS) state[k] = k === 'constantDetail' ? p.percent.constantDetail : p[k];
   }
   readToolParams();
 
@@ -242,20 +245,12 @@ export async function createSculptApp(container, options = {}) {
     },
     setTool(name) { return sculptor.setTool(name); },
 
-    async remesh({ iterations = state.iterations } = {}) {
-      // The panel's button is disabled while it runs, which drops the focus: the keys stay with the app.
-      const hadFocus = root.contains(document.activeElement);
-      try {
-        await sculptor.remesh({ iterations, onProgress: (p) => { if (panel) panel.setProgress(p); } });
-      } finally {
-        if (!disposed) {
-          if (panel) panel.setProgress(null);
-          if (hadFocus && !root.contains(document.activeElement)) root.focus({ preventScroll: true });
-          refreshQuality();
-          autosave.changed();
-        }
-      }
-      return api.stats();
+    remesh({ iterations = state.iterations } = {}) {
+      return wholeMesh('remesh', (onProgress) => sculptor.remesh({ iterations, onProgress }));
+    },
+    // The detail flood fill: the whole mesh at the current detail mode's edge length (one call, one undo step).
+    floodFill({ iterations = state.iterations } = {}) {
+      return wholeMesh('flood', (onProgress) => sculptor.floodFill({ iterations, onProgress }));
     },
 
     undo() {
@@ -327,6 +322,23 @@ export async function createSculptApp(container, options = {}) {
   };
   const brush = sculptor.brush;
 
+  // A whole-mesh remesh (`which`: the panel button showing its progress).
+  async function wholeMesh(which, run) {
+    // The panel's button is disabled while it runs, which drops the focus: the keys stay with the app.
+    const hadFocus = root.contains(document.activeElement);
+    try {
+      await run((p) => { if (panel) panel.setProgress(p, which); });
+    } finally {
+      if (!disposed) {
+        if (panel) panel.setProgress(null, which);
+        if (hadFocus && !root.contains(document.activeElement)) root.focus({ preventScroll: true });
+        refreshQuality();
+        autosave.changed();
+      }
+    }
+    return api.stats();
+  }
+
   const onKey = (e) => {
     if (!(e.ctrlKey || e.metaKey) || e.altKey) return;
     const k = e.key.toLowerCase();
@@ -376,6 +388,9 @@ export async function createSculptApp(container, options = {}) {
         epsilon: `${state.epsilon}%`, minLength: `${state.minLength}%`, maxLength: `${state.maxLength}%`, features: state.features,
       })),
       remesh: () => api.remesh({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
+      floodFill: () => api.floodFill({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
+      feel: () => guard(() => sculptor.setParams(Object.fromEntries(FEEL_KEYS.map((k) =>
+        [k, k === 'constantDetail' ? `${state[k]}%` : state[k]])))),
       radii: () => {
         if (state.handleRadius > state.roiRadius) state.handleRadius = state.roiRadius * 0.9;
         guard(() => sculptor.setParams({ handleRadius: `${state.handleRadius}%`, roiRadius: `${state.roiRadius}%` }));
@@ -403,8 +418,9 @@ export async function createSculptApp(container, options = {}) {
     root.appendChild(help);
   }
   const palette = new ToolPalette(opts.ui ? root : null, keyTarget, sculptor);
+  const gestures = createCameraGestures({ viewer, pick: (x, y) => sculptor.surfacePoint(x, y) });
   views = createViewControls({
-    viewer, keyTarget, parent: palette.el, bounds: () => sculptor.buffers.boundingBox(),
+    viewer, keyTarget, parent: palette.el, bounds: () => sculptor.buffers.boundingBox(), pivot: () => gestures.pivot,
     onCamera: (camera) => { sculptor.camera = camera; },
   });
   // The model is framed in the canvas right of the tool buttons and below the stats (viewer insets).
@@ -471,6 +487,7 @@ export async function createSculptApp(container, options = {}) {
     autosave.dispose();
     keyTarget.removeEventListener('keydown', onKey);
     views.dispose();
+    gestures.dispose();
     palette.dispose();
     sculptor.dispose();
     fileInput.dispose();

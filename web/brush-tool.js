@@ -14,6 +14,10 @@ import { BrushCursor } from './brush-cursor.js';
 import { raycastSurface } from './surface-raycast.js';
 import { CanvasTool, isTextInput } from './tool-events.js';
 import { checkSymmetry } from './settings.js';
+import { LazyPointer } from './lazy-pointer.js';
+import { TouchGate } from './touch-gate.js';
+// lastSamples keeps a long stroke's first samples only (it is for scripts and tests, not the stroke).
+const MAX_SAMPLES_KEPT = 10000;
 
 // The tool palette: the paper's handle grab (web/grab-tool.js), the core's seven brushes and the
 // mask brush (web/mask-api.js).
@@ -48,7 +52,8 @@ const RADIUS_FACTOR = 1.15;
 // radius (absolute), strength, symmetry} from the current settings.
 export function createBrushApi({ session, stroke, defaults }) {
   const api = {
-    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing}; missing ones from the current ones.
+    // Settings: {tool, radius, strength, symmetry: 'x'|'y'|'z'|'off', invert, spacing, falloff, detail (an
+    // absolute edge length; 0: the remesh settings)}; missing ones from the current ones.
     begin(settings = {}) {
       const s = coreSettings(settings, defaults());
       stroke.begin(s.tool, () => session.brushBegin(s));
@@ -98,13 +103,16 @@ function coreSettings(s, d) {
     strength: s.strength ?? d.strength,
     symmetry: symmetry === 'off' ? 'none' : symmetry,
     ...(s.invert !== undefined ? { invert: s.invert } : {}),
-    ...(s.spacing !== undefined ? { spacing: s.spacing } : {}),
+    spacing: s.spacing ?? d.spacing,
+    falloff: s.falloff ?? d.falloff,
+    detail: s.detail ?? d.detail,
   };
 }
 
 export class BrushTool extends CanvasTool {
   // view: as GrabTool's, plus cursorParent (the sculpted mesh) and changed() (redraw).
-  // core: { begin({invert}) -> bool (false: did not start), stamp(Float64Array), end(), busy(),
+  // core: { begin({invert, point}) -> bool (false: did not start; point: the surface under the press, for
+  //         the detail in screen pixels), stamp(Float64Array), end(), busy(), stabilizer() (pixels, 0: off),
   //         radius() (absolute), scaleRadius(factor), strength(), addStrength(delta), tool(),
   //         geometry() (the drawn BufferGeometry) }
   constructor(view, core) {
@@ -117,6 +125,8 @@ export class BrushTool extends CanvasTool {
     this.hoverPending = false;
     this.hoverHit = null;
     this.modifier = false;   // Ctrl/Alt held: the cursor previews the inverted brush
+    this.touch = new TouchGate((hold) => view.holdTouchOrbit(hold)); // one finger strokes, two are the view's
+    this.lastSamples = [];    // the last stroke's samples as sent (screen x, y), for scripts and tests
     this.cursor = new BrushCursor(view.cursorParent, view.changed);
   }
 
@@ -140,19 +150,29 @@ export class BrushTool extends CanvasTool {
   }
 
   onPointerDown(e) {
+    if (e.pointerType === 'touch') {
+      this.onTouchDown(e);
+      return;
+    }
     if (!this.enabled || e.button !== 0 || this.stroke || this.core.busy()) return;
     const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
     if (!hit) return; // empty space: let OrbitControls rotate the view
     e.stopImmediatePropagation();
     e.preventDefault();
+    this.beginStroke(e, hit);
+  }
+
+  // A mouse or pen press on the surface, or a finger once it moved or tapped (web/touch-gate.js).
+  beginStroke(e, hit) {
     const inverted = e.ctrlKey || e.altKey;
-    if (!this.core.begin({ invert: inverted })) return;
+    if (!this.core.begin({ invert: inverted, point: hit.point })) return;
     this.view.setOrbit(false);
     try {
       e.target.setPointerCapture(e.pointerId); // strokes continue outside the canvas
     } catch {
       // not a live pointer (a synthetic event): the stroke still works inside the canvas
     }
+    const stabilizer = this.core.stabilizer();
     this.stroke = {
       pointerId: e.pointerId,
       pending: [sample(e)],
@@ -161,8 +181,23 @@ export class BrushTool extends CanvasTool {
       facing: this.view.viewDirection().negate(),
       inverted,
       hit,
+      lazy: stabilizer > 0 ? new LazyPointer(e.clientX, e.clientY) : null,
+      stabilizer,
     };
+    this.lastSamples = [[e.clientX, e.clientY]];
     this.updateCursor();
+  }
+
+  // Touch (web/touch-gate.js): a finger on the model strokes once it moves (a tap: one dab); a second
+  // finger ends the stroke and the two orbit and zoom.
+  onTouchDown(e) {
+    if (this.touch.down(e)) {
+      if (this.stroke) this.finishStroke(e);
+      return;
+    }
+    if (!this.enabled || this.stroke || this.core.busy()) return;
+    const hit = raycastSurface(this.core.geometry(), this.view.ray(e.clientX, e.clientY));
+    if (hit) this.touch.wait(e, hit); // off the model: one finger orbits
   }
 
   onPointerLeave() {
@@ -173,6 +208,8 @@ export class BrushTool extends CanvasTool {
   onPointerMove(e) {
     this.modifier = e.ctrlKey || e.altKey;
     if (!this.enabled) return;
+    const press = this.touch.pending && this.touch.moved(e);
+    if (press) this.beginStroke(press.down, press.hit);
     if (!this.stroke) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
@@ -181,12 +218,28 @@ export class BrushTool extends CanvasTool {
     }
     if (e.pointerId !== this.stroke.pointerId) return;
     const events = typeof e.getCoalescedEvents === 'function' ? e.getCoalescedEvents() : [];
-    for (const ev of events.length ? events : [e]) this.stroke.pending.push(sample(ev));
+    const s = this.stroke;
+    for (const ev of events.length ? events : [e]) {
+      const q = sample(ev);
+      if (s.lazy) { // the stabiliser: the brush trails the pointer on its string
+        if (!s.lazy.follow(q.x, q.y, s.stabilizer)) continue;
+        q.x = s.lazy.x;
+        q.y = s.lazy.y;
+      }
+      s.pending.push(q);
+      if (this.lastSamples.length < MAX_SAMPLES_KEPT) this.lastSamples.push([q.x, q.y]);
+    }
     this.view.schedule();
   }
 
   onPointerUp(e) {
+    const tap = e.pointerType === 'touch' && this.touch.up(e);
+    if (tap) this.beginStroke(tap.down, tap.hit);
     if (!this.stroke || e.pointerId !== this.stroke.pointerId) return;
+    this.finishStroke(e);
+  }
+
+  finishStroke(e) {
     if (this.stroke.pending.length) this.flush(); // the last motion still reaches the core
     this.stroke = null;
     this.core.end();

@@ -8,10 +8,11 @@
 // Everything here is in the sculpted mesh's own coordinates (view.ray and view.viewPlane convert).
 import * as THREE from 'three';
 import { CanvasTool, isTextInput } from './tool-events.js';
+import { TouchGate } from './touch-gate.js';
 
 export class GrabTool extends CanvasTool {
-  // view: { ray(clientX, clientY), viewDirection(), viewPlane(point), setOrbit(on), showGrab({center,
-  //         handleRadius, roiRadius, visible}), schedule() (a frame() is due) }
+  // view: { ray(clientX, clientY), viewDirection(), viewPlane(point), setOrbit(on), holdTouchOrbit(hold),
+  //         showGrab({center, handleRadius, roiRadius, visible}), schedule() (a frame() is due) }
   // core: { pick(ray) -> THREE.Vector3|null, begin(center), drag(transform) -> {timings}|undefined, end(), notify(message), radii(),
   //         scaleRadii(handleFactor, roiFactor), busy() }
   constructor(view, core) {
@@ -24,6 +25,7 @@ export class GrabTool extends CanvasTool {
     this.hover = null;  // last pointer position for the hover preview
     this.hoverPending = false;
     this.hoverPoint = null;
+    this.touch = new TouchGate((hold) => view.holdTouchOrbit(hold)); // one finger pulls, two are the view's
   }
 
   onDisconnect() {
@@ -39,12 +41,32 @@ export class GrabTool extends CanvasTool {
   }
 
   onPointerDown(e) {
+    if (e.pointerType === 'touch') {
+      this.onTouchDown(e);
+      return;
+    }
     if (!this.enabled || e.button !== 0 || this.grab || this.core.busy()) return;
-    const ray = this.view.ray(e.clientX, e.clientY);
-    const hit = this.core.pick(ray);
+    const hit = this.core.pick(this.view.ray(e.clientX, e.clientY));
     if (!hit) return; // empty space: let OrbitControls rotate the view
     e.stopImmediatePropagation();
     e.preventDefault();
+    this.beginGrab(e, hit);
+  }
+
+  // Touch (web/touch-gate.js): a finger on the model takes the handle once it moves; a second finger
+  // ends the grab and the two orbit and zoom.
+  onTouchDown(e) {
+    if (this.touch.down(e)) {
+      if (this.grab) this.endGrab(e);
+      return;
+    }
+    if (!this.enabled || this.grab || this.core.busy()) return;
+    const hit = this.core.pick(this.view.ray(e.clientX, e.clientY));
+    if (hit) this.touch.wait(e, hit); // off the model: one finger orbits
+  }
+
+  // A press on the surface at `hit` (the mouse's, or a finger's once it moved).
+  beginGrab(e, hit) {
     this.view.setOrbit(false);
     try {
       e.target.setPointerCapture(e.pointerId); // the drag continues outside the canvas
@@ -73,6 +95,8 @@ export class GrabTool extends CanvasTool {
   }
 
   onPointerMove(e) {
+    const press = this.touch.pending && this.touch.moved(e);
+    if (press) this.beginGrab(press.down, press.hit);
     if (!this.grab) {
       this.hover = { x: e.clientX, y: e.clientY };
       this.hoverPending = true;
@@ -116,7 +140,12 @@ export class GrabTool extends CanvasTool {
   }
 
   onPointerUp(e) {
+    if (e.pointerType === 'touch') this.touch.up(e); // a tap takes no handle: a pull needs a drag
     if (!this.grab || e.pointerId !== this.grab.pointerId) return;
+    this.endGrab(e);
+  }
+
+  endGrab(e) {
     if (this.dirty) this.frame(); // the last motion still reaches the core
     this.grab = null;
     this.core.end();

@@ -2,7 +2,7 @@
 // (true to web/grab-tool.js, web/brush-tool.js, OrbitControls and web/view-controls.js).
 import { TOOLS } from './brush-tool.js';
 
-const VIEW_HELP = 'drag off the model: orbit · right drag: pan · wheel: zoom · F frame · O ortho · Shift+1–6 views · Ctrl+Z / Ctrl+Shift+Z';
+const VIEW_HELP = 'drag off the model: orbit · middle drag: orbit around the point under it · right drag: pan · wheel: zoom · F frame · O ortho · Shift+1–6 views · Ctrl+Z / Ctrl+Shift+Z';
 
 export function helpText(tool) {
   const t = TOOLS.find((x) => x.name === tool);

@@ -3,6 +3,10 @@
 import GUI from 'lil-gui';
 import { SYMMETRY } from './settings.js';
 import { MASK_OPS } from './mask-api.js';
+import { FALLOFFS } from './brush-feel.js';
+
+// The detail modes as the panel names them (web/brush-feel.js explains each).
+const DETAIL_LABELS = { 'ε (relative)': 'relative', constant: 'constant', 'brush radius': 'brush', 'screen pixels': 'pixels' };
 
 export const SAMPLES = { sphere: 'models/sphere.obj', fandisk: 'models/fandisk.off', hemisphere: 'models/hemisphere.off' };
 
@@ -36,6 +40,23 @@ export function createPanel(parent, state, actions) {
   sculpt.add(state, 'brushRadius', 0.5, 30, 0.1).name('radius (%)').onChange(() => actions.brush());
   sculpt.add(state, 'brushStrength', 0.05, 1, 0.01).name('strength').onChange(() => actions.brush());
   sculpt.add(state, 'symmetry', SYMMETRY).name('symmetry').onChange(() => actions.brush());
+  // Feel: the falloff preset, stamps per radius of travel, the lazy-mouse string (0: off).
+  sculpt.add(state, 'falloff', FALLOFFS).name('falloff').onChange(() => actions.feel());
+  sculpt.add(state, 'spacing', 0.05, 1, 0.01).name('spacing (× radius)').onChange(() => actions.feel());
+  sculpt.add(state, 'stabilizer', 0, 100, 1).name('stabilizer (px, 0 off)').onChange(() => actions.feel());
+
+  // Detail: what edge length strokes remesh to; only the current mode's size is shown.
+  const detail = gui.addFolder('Detail');
+  detail.add(state, 'detailMode', DETAIL_LABELS).name('detail').onChange(() => { showDetailSize(); actions.feel(); });
+  const sizes = {
+    constant: detail.add(state, 'constantDetail', 0.05, 5, 0.01).name('edge length (%)'),
+    brush: detail.add(state, 'brushDetail', 1, 100, 1).name('edge (% of radius)'),
+    pixels: detail.add(state, 'pixelDetail', 1, 40, 1).name('edge (screen px)'),
+  };
+  for (const c of Object.values(sizes)) c.onChange(() => actions.feel());
+  const showDetailSize = () => { for (const [mode, c] of Object.entries(sizes)) c.show(state.detailMode === mode); };
+  showDetailSize();
+  const floodButton = detail.add({ run: () => actions.floodFill() }, 'run').name('detail flood fill');
 
   // The mask (tool M: paint, Ctrl/Alt erase; radius and strength are the brush's): masked parts never move.
   const mask = gui.addFolder('Mask');
@@ -62,10 +83,11 @@ export function createPanel(parent, state, actions) {
     refresh() {
       if (actions.view) ortho.on = actions.view.orthographic();
       for (const c of gui.controllersRecursive()) c.updateDisplay();
+      showDetailSize();
     },
     // Short views: only the Brush folder stays open (lil-gui scrolls the rest).
     compact() {
-      for (const f of [files, remesh, brush, mask, view, history]) f.close();
+      for (const f of [files, remesh, brush, detail, mask, view, history]) f.close();
       gui.domElement.classList.add('compact');
     },
     setHistory(canUndo, canRedo) {
@@ -82,10 +104,12 @@ export function createPanel(parent, state, actions) {
       ui.sample = name;
       sampleCtl.updateDisplay();
     },
-    // null: idle; {done, total}: running.
-    setProgress(p) {
-      remeshButton.name(p ? `remeshing… ${p.done}/${p.total}` : 'remesh whole mesh');
-      remeshButton.disable(!!p);
+    // null: idle; {done, total}: running. which: 'remesh' (whole mesh) or 'flood' (detail flood fill).
+    setProgress(p, which = 'remesh') {
+      const [button, idle, busy] = which === 'flood' ? [floodButton, 'detail flood fill', 'flood filling']
+        : [remeshButton, 'remesh whole mesh', 'remeshing'];
+      button.name(p ? `${busy}… ${p.done}/${p.total}` : idle);
+      for (const b of [remeshButton, floodButton]) b.disable(!!p);
     },
     dispose() { gui.destroy(); },
   };

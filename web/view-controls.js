@@ -15,7 +15,8 @@ const SHIFT_DIGITS = ['front', 'back', 'left', 'right', 'top', 'bottom'];
 const NUMPAD = { Numpad1: ['front', 'back'], Numpad3: ['right', 'left'], Numpad7: ['top', 'bottom'] };
 
 // viewer: web/viewer.js; bounds(): the model's Box3; onCamera(camera): the active camera changed.
-export function createViewControls({ viewer, bounds, keyTarget, parent, onCamera }) {
+// pivot(): the surface point the last orbit drag turned around (web/camera-gestures.js), or null.
+export function createViewControls({ viewer, bounds, keyTarget, parent, onCamera, pivot = () => null }) {
   viewer.onCameraChange = onCamera;
   const view = {
     frame() { viewer.fitView(bounds()); },
@@ -28,7 +29,7 @@ export function createViewControls({ viewer, bounds, keyTarget, parent, onCamera
       if (on !== undefined) viewer.setOrthographic(!!on);
       return viewer.orthographic;
     },
-    // The camera, for scripts and tests: position, target, up, distance, zoom, projection.
+    // The camera, for scripts and tests: position, target, up, distance, zoom, projection, last orbit pivot.
     state() {
       const c = viewer.camera;
       return {
@@ -36,6 +37,7 @@ export function createViewControls({ viewer, bounds, keyTarget, parent, onCamera
         distance: c.position.distanceTo(viewer.controls.target), zoom: c.zoom, orthographic: viewer.orthographic,
         minDistance: viewer.controls.minDistance, maxDistance: viewer.controls.maxDistance,
         minZoom: viewer.controls.minZoom, maxZoom: viewer.controls.maxZoom, modelRadius: viewer.modelRadius,
+        pivot: pivot()?.toArray() ?? null,
       };
     },
   };

@@ -302,8 +302,8 @@ class SessionHandle {
 
   // A brush stroke (sculpt/brush.h): brushBegin(settings), one brushStamp(samples) per animation
   // frame, brushEnd(); the stroke is one undo step. Settings: a plain object
-  // {tool, radius, strength, spacing, symmetry, invert} (absolute radius), checked like a session
-  // file's brush step.
+  // {tool, radius, strength, spacing, symmetry, invert, detail, falloff} (absolute lengths), checked
+  // like a session file's brush step.
   void brush_begin(const val& settings) {
     guarded_void([&] {
       session_.brush_begin(sculpt::parse_brush_settings(object_arg(settings, "brushBegin", true)));
@@ -386,12 +386,14 @@ class SessionHandle {
   }
   bool masking() const { return session_.masking(); }
 
-  void remesh(int iterations) {
+  // detail > 0: every edge towards that absolute length (the detail flood fill); 0: the settings.
+  void remesh_detail(int iterations, double detail) {
     guarded_void([&] {
-      session_.remesh(iterations);
+      session_.remesh(iterations, detail);
       sync(true);
     });
   }
+  void remesh(int iterations) { remesh_detail(iterations, 0); }
   bool undo() {
     return guarded(false, [&] {
       bool ok = session_.undo();
@@ -570,6 +572,7 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("masking", &SessionHandle::masking)
       .function("maskValues", &SessionHandle::mask_values)
       .function("remesh", &SessionHandle::remesh)
+      .function("remeshDetail", &SessionHandle::remesh_detail)
       .function("undo", &SessionHandle::undo)
       .function("redo", &SessionHandle::redo)
       .function("canUndo", &SessionHandle::can_undo)

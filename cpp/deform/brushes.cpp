@@ -29,6 +29,7 @@ constexpr int kMaxNormalPasses = 24;
 // BrushTool::Grab is the snake hook; "grab" (its name until the Pull tool's handle grab took the
 // word) is still read as a deprecated alias, so older session files replay.
 const char* const kNames[] = {"draw", "inflate", "smooth", "flatten", "pinch", "crease", "snakeHook"};
+const char* const kFalloffNames[] = {"smooth", "sphere", "sharp", "linear", "constant"};
 
 // Twice the area-weighted normal of the faces around v (not normalised).
 Vec3 fan_normal(const SurfaceMesh& mesh, Vertex v) {
@@ -67,6 +68,15 @@ std::optional<BrushTool> parse_brush_tool(const std::string& name) {
   return std::nullopt;
 }
 
+const char* brush_falloff_list() { return "smooth, sphere, sharp, linear, constant"; }
+const char* brush_falloff_name(BrushFalloff falloff) { return kFalloffNames[static_cast<int>(falloff)]; }
+
+std::optional<BrushFalloff> parse_brush_falloff(const std::string& name) {
+  for (int i = 0; i < 5; ++i)
+    if (name == kFalloffNames[i]) return static_cast<BrushFalloff>(i);
+  return std::nullopt;
+}
+
 void check_brush_settings(const BrushSettings& s) {
   if (!(s.radius > 0) || !std::isfinite(s.radius)) throw std::invalid_argument("brush: 'radius' must be a positive number");
   if (!(s.strength >= 0 && s.strength <= 1)) throw std::invalid_argument("brush: 'strength' must be between 0 and 1");
@@ -77,11 +87,24 @@ void check_brush_settings(const BrushSettings& s) {
     throw std::invalid_argument("brush: 'detail' must be a non-negative length (0: the session's detail)");
 }
 
-double brush_falloff(double distance, double radius) {
+double brush_falloff(double distance, double radius, BrushFalloff falloff) {
   if (!(distance < radius)) return 0;
   const double q = distance / radius;
-  const double t = 1 - q * q;
-  return t * t * t;
+  switch (falloff) {
+    case BrushFalloff::Smooth: {
+      const double t = 1 - q * q;
+      return t * t * t;
+    }
+    case BrushFalloff::Sphere:
+      return std::sqrt(1 - q * q);
+    case BrushFalloff::Sharp:
+      return (1 - q) * (1 - q);
+    case BrushFalloff::Linear:
+      return 1 - q;
+    case BrushFalloff::Constant:
+      return 1;
+  }
+  return 0;
 }
 
 Vertex walk_to_nearest_vertex(const SurfaceMesh& mesh, Vertex start, const Point& target) {
@@ -130,7 +153,7 @@ void BrushDeformer::grow(size_t n) {
   mesh::resize_scratch(count_, n, 0);
 }
 
-void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double radius) {
+void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double radius, BrushFalloff falloff) {
   inside_.clear();
   weight_.clear();
   if (++stamp_run_ == 0) {
@@ -157,7 +180,7 @@ void BrushDeformer::gather(const SurfaceMesh& mesh, const StampSpec& s, double r
         if (inside(w)) inside_.push_back(w);
       }
     });
-  for (Vertex v : inside_) weight_.push_back(brush_falloff(glm::length(mesh.position(v) - s.center), radius));
+  for (Vertex v : inside_) weight_.push_back(brush_falloff(glm::length(mesh.position(v) - s.center), radius, falloff));
 }
 
 void BrushDeformer::smooth_normals(const SurfaceMesh& mesh, double displacement) {
@@ -196,7 +219,7 @@ void BrushDeformer::smooth_normals(const SurfaceMesh& mesh, double displacement)
 }
 
 void BrushDeformer::displace(const SurfaceMesh& mesh, const BrushSettings& st, const StampSpec& s) {
-  gather(mesh, s, st.radius);
+  gather(mesh, s, st.radius, st.falloff);
   if (inside_.empty()) return;
   const double sign = st.invert ? -1.0 : 1.0;
   const double amount = st.strength * s.pressure;

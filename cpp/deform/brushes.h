@@ -26,6 +26,18 @@ const char* brush_tool_list();
 const char* brush_tool_name(BrushTool tool);
 std::optional<BrushTool> parse_brush_tool(const std::string& name);
 
+// How a stamp's effect fades from its centre (q = distance / radius) to its rim:
+//   smooth   (1 - q^2)^3   flat centre, soft rim (the default, and every stroke before presets)
+//   sphere   sqrt(1 - q^2) a dome: full strength almost to the rim, then a steep edge
+//   sharp    (1 - q)^2     a pointed peak that tapers fast
+//   linear   1 - q         a cone
+//   constant 1             the whole disc at full strength (a stamp with a hard edge)
+enum class BrushFalloff { Smooth, Sphere, Sharp, Linear, Constant };
+// "smooth, sphere, sharp, linear, constant" (for error messages).
+const char* brush_falloff_list();
+const char* brush_falloff_name(BrushFalloff falloff);
+std::optional<BrushFalloff> parse_brush_falloff(const std::string& name);
+
 struct BrushSettings {
   BrushTool tool = BrushTool::Draw;
   double radius = 0;      // absolute length
@@ -37,12 +49,14 @@ struct BrushSettings {
   // settings. The viewer's screen-pixel detail mode passes pixels x the size of a pixel at the
   // brush (Blender's relative detail).
   double detail = 0;
+  BrushFalloff falloff = BrushFalloff::Smooth;
 };
 // Throws std::invalid_argument "brush: 'radius' must be a positive number" and the like.
 void check_brush_settings(const BrushSettings& s);
 
-// (1 - (d/r)^2)^3 inside the radius, 0 outside: smooth at the rim, flat at the centre.
-double brush_falloff(double distance, double radius);
+// The falloff's weight in [0, 1] at `distance` from the centre; 0 at and beyond the radius.
+// Without a falloff: (1 - (d/r)^2)^3, the smooth preset.
+double brush_falloff(double distance, double radius, BrushFalloff falloff = BrushFalloff::Smooth);
 
 // Walks from `start` to neighbours that are strictly closer to `target` until none is; the
 // vertex reached. Cheap between successive stamps, which are a fraction of a radius apart.
@@ -73,7 +87,7 @@ class BrushDeformer {
   size_t moved() const { return moved_; }
 
  private:
-  void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius);
+  void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius, BrushFalloff falloff);
   void displace(const SurfaceMesh& mesh, const BrushSettings& settings, const StampSpec& s);
   void add(Vertex v, const Vec3& d);  // one stamp's displacement of v
   // Inflate: vertex normals of inside_ smoothed over about `displacement` into smooth_normal_.

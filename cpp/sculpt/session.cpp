@@ -138,13 +138,14 @@ struct Session::Impl {
     if (relative[1]) o.min_length *= scale;
     if (relative[2]) o.max_length *= scale;
     if (o.min_length > o.max_length) o.min_length = o.max_length;  // one relative, the other not
-    const double detail = brush.settings().detail;
-    if (detail > 0) {
-      // Constant detail: the clamp gives every edge this length (Remesher: clamp_decides_sizing).
-      o.min_length = o.max_length = detail;
-      o.epsilon = std::min(o.epsilon, detail);
-    }
+    set_constant_detail(o, brush.settings().detail);
     remesher->set_options(o);
+  }
+  // Constant detail (> 0): the clamp gives every edge this length (Remesher: clamp_decides_sizing).
+  static void set_constant_detail(remesh::RemeshOptions& o, double detail) {
+    if (!(detail > 0)) return;
+    o.min_length = o.max_length = detail;
+    o.epsilon = std::min(o.epsilon, detail);
   }
   void mesh_replaced() {
     component_diagonal = 0;
@@ -435,14 +436,17 @@ float Session::mask_value(mesh::Vertex v) const {
   return m.is_valid() && v.idx < impl_->mesh.vertices_size() ? m[v] : 0.0f;
 }
 
-void Session::remesh(int iterations) {
+void Session::remesh(int iterations, double detail) {
   Impl& s = *impl_;
   s.require_mesh("remesh");
   if (iterations < 1) throw std::invalid_argument("remesh: 'iterations' must be a positive integer");
+  if (!(detail >= 0) || !std::isfinite(detail))
+    throw std::invalid_argument("remesh: 'detail' must be a non-negative length (0: the session's detail)");
   s.end_grab();
   const auto t0 = Clock::now();
   s.push_undo();
   remesh::RemeshOptions o = s.options;
+  Impl::set_constant_detail(o, detail);
   o.projection = true;
   o.iterations = iterations;
   s.remesh_warning = remesh::remesh(s.mesh, o).warning;
@@ -509,7 +513,7 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
         break;
       }
       case SessionStep::Kind::Remesh:
-        remesh(step.count);
+        remesh(step.count, step.detail);
         break;
       case SessionStep::Kind::Mask:
         mask(step.mask);

@@ -129,7 +129,9 @@ class Session {
   float mask_value(mesh::Vertex v) const;
 
   // Whole-mesh adaptive remeshing with projection onto the current surface; one undo step.
-  void remesh(int iterations);
+  // detail > 0: every edge towards that absolute length instead of the settings (the detail flood
+  // fill: the whole mesh at a stroke's constant detail).
+  void remesh(int iterations, double detail = 0);
   // Empty, or one line for the user when the last remesh() stopped at its vertex limit (the mesh
   // is the valid one reached so far; remesh::RemeshReport::warning).
   const std::string& remesh_warning() const;

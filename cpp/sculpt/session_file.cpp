@@ -138,7 +138,8 @@ BrushStroke parse_brush(const json& b, const std::string& ctx) {
 deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx,
                                            std::initializer_list<const char*> stroke_keys) {
   if (!b.is_object()) throw std::invalid_argument(ctx + "must be an object");
-  check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert", "detail"}, stroke_keys);
+  check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert", "detail", "falloff"},
+             stroke_keys);
   for (const char* k : {"tool", "radius"})
     if (!b.contains(k)) fail(ctx, k, "is missing");
   deform::BrushSettings st;
@@ -172,6 +173,12 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
     if (!v.is_number() || !(v.get<double>() >= 0) || !std::isfinite(v.get<double>()))
       fail(ctx, "detail", "must be a non-negative length (edge length for this stroke; 0: the session's detail)");
     st.detail = v.get<double>();
+  }
+  if (b.contains("falloff")) {  // absent: smooth, the curve of every stroke recorded before presets
+    const json& v = b["falloff"];
+    const auto f = v.is_string() ? deform::parse_brush_falloff(v.get<std::string>()) : std::nullopt;
+    if (!f) fail(ctx, "falloff", std::string("must be one of ") + deform::brush_falloff_list());
+    st.falloff = *f;
   }
   return st;
 }
@@ -284,9 +291,10 @@ SessionFile parse_session_file(const json& j) {
     } else if (kind == "remesh") {
       step.kind = SessionStep::Kind::Remesh;
       if (!v.is_object()) throw std::invalid_argument(ctx + "must be an object {\"iterations\": k}");
-      check_keys(v, ctx, {"iterations"});
+      check_keys(v, ctx, {"iterations", "detail"});
       if (!v.contains("iterations")) fail(ctx, "iterations", "is missing");
       step.count = positive_int(v["iterations"], ctx, "iterations");
+      if (v.contains("detail")) step.detail = positive_number(v["detail"], ctx, "detail", true);
     } else if (kind == "mask") {
       step.kind = SessionStep::Kind::Mask;
       step.mask = parse_mask_op(v, ctx);
@@ -338,13 +346,17 @@ json to_json(const SessionFile& f) {
                       {"symmetry", st.symmetry_axis < 0 ? "none" : kAxes[st.symmetry_axis]},
                       {"invert", st.invert}};
         if (st.detail > 0) brush["detail"] = st.detail;
+        if (st.falloff != deform::BrushFalloff::Smooth) brush["falloff"] = deform::brush_falloff_name(st.falloff);
         if (!s.brush.pressure.empty()) brush["pressure"] = s.brush.pressure;
         steps.push_back({{"brush", brush}});
         break;
       }
-      case SessionStep::Kind::Remesh:
-        steps.push_back({{"remesh", {{"iterations", s.count}}}});
+      case SessionStep::Kind::Remesh: {
+        json remesh = {{"iterations", s.count}};
+        if (s.detail > 0) remesh["detail"] = s.detail;
+        steps.push_back({{"remesh", remesh}});
         break;
+      }
       case SessionStep::Kind::Mask:
         steps.push_back({{"mask", to_json(s.mask)}});
         break;

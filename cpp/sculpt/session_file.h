@@ -9,8 +9,9 @@
 //                "translate": [dx,dy,dz], "rotate": {"axis": [ax,ay,az], "degrees": a},
 //                "scale": s, "substeps": n}},
 //      {"brush": {"tool": "inflate", "path": [[x,y,z], ...], "radius": r, "strength": s,
-//                 "symmetry": "x", "spacing": f, "invert": false, "pressure": [p, ...]}},
-//      {"remesh": {"iterations": k}},
+//                 "symmetry": "x", "spacing": f, "invert": false, "pressure": [p, ...],
+//                 "detail": L, "falloff": "sharp"}},
+//      {"remesh": {"iterations": k, "detail": L}},
 //      {"mask": {"op": "paint", "path": [[x,y,z], ...], "radius": r, "strength": s}},
 //      {"mask": {"op": "invert"}},
 //      {"undo": n}, {"redo": n}]}
@@ -20,7 +21,10 @@
 // angle and of the scale change); translate, rotate, scale and substeps are optional (identity,
 // substeps 1). Lengths in settings are absolute or, as strings ending in '%', percent of the
 // bounding-box diagonal. A brush stroke needs tool, path and radius (absolute); strength defaults
-// to 0.5, spacing to 0.25 (of the radius), symmetry to "none", pressure to 1 per path point.
+// to 0.5, spacing to 0.25 (of the radius), symmetry to "none", pressure to 1 per path point,
+// falloff to "smooth" (smooth, sphere, sharp, linear, constant: deform/brushes.h), detail to 0 (the
+// session's settings; > 0: an absolute edge length for this stroke). A remesh step's detail > 0
+// remeshes the whole mesh to that constant edge length (Session::remesh; the detail flood fill).
 //
 // A mask step's op is one of paint, erase, clear, fill, invert, blur, sharpen (sculpt/mask.h);
 // paint and erase need path and radius, strength defaults to 1.
@@ -54,9 +58,9 @@ struct SettingsPatch {
 SettingsPatch parse_settings(const nlohmann::json& s, const std::string& context = "settings: ");
 nlohmann::json to_json(const SettingsPatch& s);
 
-// The settings of a brush stroke (tool, radius, strength, spacing, symmetry, invert), checked as in
-// a brush step; `stroke_keys` are further keys the caller reads itself (a step's path, pressure).
-// Also what the wasm module's brushBegin takes.
+// The settings of a brush stroke (tool, radius, strength, spacing, symmetry, invert, detail,
+// falloff), checked as in a brush step; `stroke_keys` are further keys the caller reads itself (a
+// step's path, pressure). Also what the wasm module's brushBegin takes.
 deform::BrushSettings parse_brush_settings(const nlohmann::json& b, const std::string& context = "brush: ",
                                            std::initializer_list<const char*> stroke_keys = {});
 
@@ -77,6 +81,7 @@ struct SessionStep {
   GrabStep grab;  // Kind::Grab
   int count = 1;  // remesh iterations, undo / redo count
   BrushStroke brush;  // Kind::Brush (last: {kind, grab, count} aggregate initialisers stay valid)
+  double detail = 0;  // Kind::Remesh: > 0, a constant edge length instead of the settings
   MaskOp mask;        // Kind::Mask
 };
 

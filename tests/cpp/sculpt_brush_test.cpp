@@ -22,6 +22,7 @@
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
 #include "sculpt/session_file.h"
+#include "test_build.h"
 
 using namespace adasculpt;
 using deform::BrushTool;
@@ -537,9 +538,7 @@ TEST(SculptBrush, StampCostOnAFinerSphere) {
 // stroke face budget (past 250k faces) in the 10th; along smoothed normals all 14 finish, well
 // below it, with the same inflation.
 TEST(SculptBrush, LargeInflateStrokesDoNotCrumpleTheSurface) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
-#endif
+  if (test::kSanitizedBuild) GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
   sculpt::Session s;
   s.load_file(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/eight.off");
   const double volume_before = volume(s.mesh());
@@ -563,9 +562,7 @@ TEST(SculptBrush, LargeInflateStrokesDoNotCrumpleTheSurface) {
 // A stroke that asks for more detail than memory allows (tiny epsilon and edge lengths, a wide
 // brush) must stop at its face budget with a message, leave a valid mesh, and undo as one step.
 TEST(SculptBrush, StrokeStopsAtTheStrokeFaceBudget) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
-#endif
+  if (test::kSanitizedBuild) GTEST_SKIP() << "about 1 s in Release, minutes under ASan: the Release ctest runs it";
   sculpt::Session s;
   s.load_file(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/eight.off");
   s.set_settings({{"epsilon", "0.001%"}, {"min_length", "0.01%"}, {"max_length", "0.1%"}});

@@ -11,6 +11,7 @@
 #include "geometry/quality.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "test_build.h"
 
 using namespace adasculpt;
 using mesh::Vertex;
@@ -217,7 +218,8 @@ TEST(SculptSession, ThousandRandomGrabsWithUndoRedo) {
   std::vector<mesh::SurfaceMesh> states{s.mesh()};  // states[k] = after k live steps
   size_t position = 0;
   int grabs = 0;
-  for (int i = 0; i < 1000; ++i) {
+  const int operations = test::operations_for_this_build(1000);  // Release: 1,000
+  for (int i = 0; i < operations; ++i) {
     const double r = (u(rng) + 1) / 2;
     if (r < 0.2 && s.can_undo()) {
       ASSERT_TRUE(s.undo());
@@ -242,7 +244,7 @@ TEST(SculptSession, ThousandRandomGrabsWithUndoRedo) {
       ++position;
     }
   }
-  EXPECT_GT(grabs, 600);
+  EXPECT_GT(grabs, operations * 6 / 10);
 }
 
 TEST(SculptSession, ReplayReport) {

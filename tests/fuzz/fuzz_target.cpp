@@ -1,5 +1,5 @@
 // One libFuzzer target per entry point of tests/fuzz/fuzz_entry.h; the build compiles this file once
-// per target with -DADASCULPT_FUZZ_TARGET="name" (tests/fuzz/CMakeLists.txt, run by scripts/fuzz.sh).
+// per target with -DADASCULPT_FUZZ_TARGET="name" (CMakeLists.txt, sanitized clang builds; run by scripts/fuzz.sh).
 // A ContractViolation or an exception of an undocumented type aborts, which libFuzzer reports as a
 // crash and saves the input.
 #include <cstdio>

@@ -3,22 +3,14 @@
 const test = require('node:test');
 const assert = require('node:assert');
 
-const { skip, sphereObj, loadModule } = require('./wasm-module.cjs');
+const wasm = require('./wasm-module.cjs');
 
+const { skip, loadModule } = wasm;
 let M;
 test.before(async () => {
   M = await loadModule();
 });
-
-function withSphere(fn) {
-  const s = new M.Session();
-  try {
-    s.loadBytes(sphereObj, 'sphere.obj');
-    return fn(s);
-  } finally {
-    s.delete();
-  }
-}
+const withSphere = (fn) => wasm.withSphere(M, fn);
 
 const values = (s) => Array.from(s.maskValues());
 

@@ -18,4 +18,15 @@ async function loadModule() {
   return create({ wasmBinary: fs.readFileSync(path.join(wasmDir, 'adasculpt.wasm')) });
 }
 
-module.exports = { root, wasmDir, haveWasm, skip, sphereObj, loadModule };
+// fn(session) on a new Session holding the default sphere; the session is deleted after.
+function withSphere(Module, fn) {
+  const s = new Module.Session();
+  try {
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    return fn(s);
+  } finally {
+    s.delete();
+  }
+}
+
+module.exports = { root, wasmDir, haveWasm, skip, sphereObj, loadModule, withSphere };

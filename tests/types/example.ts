@@ -52,3 +52,18 @@ export async function app(container: HTMLElement): Promise<void> {
   const el = document.createElement('adasculpt-viewer');
   el.addEventListener('adasculpt-ready', (e) => e.detail.undo());
 }
+
+// Brush feel and detail control (issue 19): falloff, spacing, stabiliser, detail modes, flood fill, the orbit pivot.
+import type { SculptApp } from 'adasculpt';
+export async function feel(sculptor: AdaptiveSculptor, a: SculptApp): Promise<number> {
+  const p: SculptorParams = sculptor.setParams({ falloff: 'sharp', spacing: 0.1, stabilizer: 30, detailMode: 'pixels', pixelDetail: 6 });
+  a.setParams({ detailMode: 'constant', constantDetail: '0.5%', brushDetail: 20 });
+  sculptor.brush.stroke({ path: [[0, 0, 1]], falloff: 'constant', detail: 0.01 });
+  const counts = await sculptor.floodFill({ iterations: 2 });
+  const stats = await a.floodFill();
+  const point = sculptor.surfacePoint(100, 100);
+  const pivot = a.view.state().pivot;
+  sculptor.session.remeshDetail(1, 0.02);
+  console.log(p.falloff, p.percent.constantDetail, counts.vertices, stats.quality.edgeLengthMean, point?.x, pivot?.[0]);
+  return sculptor.detailLength();
+}
