@@ -57,7 +57,13 @@ struct Scene {
     options.epsilon /= 16;
     options.min_length /= 4;
     options.max_length /= 4;
+    faces_before = faces_at_masked(mesh);
+    points_before = masked_positions(mesh);
+    vertices_before = mesh.n_vertices();
   }
+  std::vector<std::array<mesh::Index, 3>> faces_before;
+  std::map<mesh::Index, Point> points_before;
+  size_t vertices_before = 0;
 };
 
 bool same_points(const std::map<mesh::Index, Point>& a, const std::map<mesh::Index, Point>& b) {
@@ -71,11 +77,16 @@ bool same_points(const std::map<mesh::Index, Point>& a, const std::map<mesh::Ind
 
 }  // namespace
 
+// The remeshed scene: the unmasked part refined, everything at masked vertices as it was.
+void expect_masked_part_untouched(const Scene& s) {
+  s.mesh.validate();
+  EXPECT_GT(s.mesh.n_vertices(), s.vertices_before + s.vertices_before / 2);
+  EXPECT_EQ(faces_at_masked(s.mesh), s.faces_before);
+  EXPECT_TRUE(same_points(masked_positions(s.mesh), s.points_before));
+}
+
 TEST(RemeshMask, RegionIterationsLeaveMaskedVerticesAndTheirTrianglesAlone) {
   Scene s;
-  const auto faces = faces_at_masked(s.mesh);
-  const auto points = masked_positions(s.mesh);
-  const size_t before = s.mesh.n_vertices();
   remesh::Remesher r(s.mesh, s.options);
   for (int i = 0; i < 4; ++i) {
     std::vector<Vertex> region;
@@ -83,9 +94,7 @@ TEST(RemeshMask, RegionIterationsLeaveMaskedVerticesAndTheirTrianglesAlone) {
     r.iterate_region(region);
     s.mesh.validate();
   }
-  EXPECT_GT(s.mesh.n_vertices(), before + before / 2);  // the rest was refined
-  EXPECT_EQ(faces_at_masked(s.mesh), faces);
-  EXPECT_TRUE(same_points(masked_positions(s.mesh), points));
+  expect_masked_part_untouched(s);
   const mesh::VertexProperty<float> mask = mesh::find_mask(s.mesh);
   size_t partly = 0;
   for (Vertex v : s.mesh.vertices()) {
@@ -97,16 +106,10 @@ TEST(RemeshMask, RegionIterationsLeaveMaskedVerticesAndTheirTrianglesAlone) {
 
 TEST(RemeshMask, WholeMeshIterationsLeaveMaskedVerticesAndTheirTrianglesAlone) {
   Scene s;
-  const auto faces = faces_at_masked(s.mesh);
-  const auto points = masked_positions(s.mesh);
-  const size_t before = s.mesh.n_vertices();
   {
     remesh::Remesher r(s.mesh, s.options);
     for (int i = 0; i < 3; ++i) r.iterate();
     r.polish();
   }
-  s.mesh.validate();
-  EXPECT_GT(s.mesh.n_vertices(), before + before / 2);
-  EXPECT_EQ(faces_at_masked(s.mesh), faces);
-  EXPECT_TRUE(same_points(masked_positions(s.mesh), points));
+  expect_masked_part_untouched(s);
 }
