@@ -93,9 +93,9 @@ void MaskPainter::add_point(mesh::SurfaceMesh& mesh, const Point& p, const Locat
   double along = spacing - travelled_;  // from a to the next stamp
   while (along <= length) {
     const Point centre = a + (along / length) * (p - a);
-    seed_ = seed_.is_valid() ? deform::walk_to_nearest_vertex(mesh, seed_, centre) : locate(centre);
+    if (seed_.is_valid()) seed_ = deform::walk_to_nearest_vertex(mesh, seed_, centre);
     // A walk can stop at a nearer vertex of another fold; the surface tree knows better.
-    if (glm::length(mesh.position(seed_) - centre) >= op_.radius) seed_ = locate(centre);
+    if (!seed_.is_valid() || glm::length(mesh.position(seed_) - centre) >= op_.radius) seed_ = locate(centre);
     stamp(mesh, centre, seed_);
     along += spacing;
   }
