@@ -272,8 +272,9 @@ test('while stroking, at most one call into wasm per animation frame', async ({ 
 
 // Once a defect (issue 18): after a replayed stroke was undone, the same stroke gave another result
 // (sphere, inflate: 2,674 vertices instead of 2,776): the next stroke's remesher took over the arrays
-// the last one had left on the mesh. A remesher now removes its arrays (native test:
-// SculptUndoLog.AStrokeUndoneAndDrawnAgainGivesTheSameMesh).
+// the last one had left on the mesh. A remesher now removes its arrays, and undo brings back where
+// the last stroke ended (native tests: SculptUndoLog.AStrokeUndoneAndDrawnAgainGivesTheSameMesh,
+// SculptRedraw.*, which also redraws a stroke that followed another one).
 test('a replayed stroke, undone and drawn again, gives the same mesh as the replay', async ({ page }) => {
   await open(page);
   const same = await page.evaluate(async () => {

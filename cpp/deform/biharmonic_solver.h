@@ -80,6 +80,10 @@ class BiharmonicSolver {
   // degenerate region, as solve() does.
   bool advance_amortized(double work_budget);
   bool amortized_running() const;
+  // The estimated work of the amortised solve's next step when it runs in one piece (the
+  // product, the ordering, the symbolic analysis, the triangular solves); 0 for the rows of the
+  // factorisation, which stop at any budget.
+  double amortized_next_step_work() const;
   void cancel_amortized();
   // Once advance_amortized() returned true: the free values and, per row, the Laplacian of the
   // solution (as solve()'s `laplacian`).

@@ -99,7 +99,9 @@ class HandleDeformer {
     begin(mesh, picked, mesh::Face(), handle_radius, roi_radius);
   }
   // One frame; `total` is the transform since begin(). Edits the mesh (splits, positions).
-  StepResult& step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon);
+  // work_scale scales this frame's share of the carried field's solve (field_work_per_frame):
+  // less in frames where the remesher has more to do.
+  StepResult& step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon, double work_scale = 1.0);
   // Steps 1-2 only (no refinement, no deformation): for tests and for measuring the field.
   void compute_region_and_field(const SurfaceMesh& mesh);
   // Step 2 only, on the region of the last call (same vertices; geometry may have changed):
@@ -153,6 +155,7 @@ class HandleDeformer {
   Vertex begin_seed_;
   HandleTransform previous_total_;
   bool first_frame_ = true;
+  bool restart_pending_ = false;  // a refresh finished last frame: the next one starts this frame
   double handle_radius_used_ = 0, roi_radius_used_ = 0;  // after the vertex budget
 
   GeodesicWorkspace geodesic_;

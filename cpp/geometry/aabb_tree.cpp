@@ -193,7 +193,9 @@ void TriangleTree::test_triangle(const Point& q, std::uint32_t tri, ClosestHit& 
 }
 
 // Branch and bound: visit the nearer child first, skip any box farther than the best so far.
-void TriangleTree::search(const Point& q, ClosestHit& best) const {
+// Only triangles with accept(tri) take part.
+template <class Accept>
+void TriangleTree::search(const Point& q, ClosestHit& best, Accept&& accept) const {
   struct Entry {
     std::uint32_t node;
     double d2;
@@ -206,7 +208,8 @@ void TriangleTree::search(const Point& q, ClosestHit& best) const {
     if (e.d2 >= best.distance2) continue;
     const Node& n = nodes_[e.node];
     if (n.count > 0) {
-      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) test_triangle(q, i, best);
+      for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+        if (accept(i)) test_triangle(q, i, best);
       continue;
     }
     std::uint32_t near = e.node + 1, far = n.first;
@@ -221,7 +224,7 @@ void TriangleTree::search(const Point& q, ClosestHit& best) const {
 TriangleTree::ClosestHit TriangleTree::closest_point(const Point& q) const {
   ClosestHit best;
   best.distance2 = std::numeric_limits<double>::infinity();
-  if (!nodes_.empty()) search(q, best);
+  if (!nodes_.empty()) search(q, best, [](std::uint32_t) { return true; });
   return best;
 }
 
@@ -231,7 +234,22 @@ TriangleTree::ClosestHit TriangleTree::closest_point(const Point& q, const Close
   // The hint's own distance belongs to another query point; re-measure from q so the bound
   // is a true upper bound (exact answer, only faster).
   if (hint.triangle < corners_.size()) test_triangle(q, hint.triangle, best);
-  if (!nodes_.empty()) search(q, best);
+  if (!nodes_.empty()) search(q, best, [](std::uint32_t) { return true; });
+  return best;
+}
+
+bool TriangleTree::faces(std::uint32_t tri, const Vec3& facing) const {
+  const auto& c = corners_[tri];
+  return glm::dot(glm::cross(c[1] - c[0], c[2] - c[0]), facing) > 0;
+}
+
+TriangleTree::ClosestHit TriangleTree::closest_point_facing(const Point& q, const Vec3& facing,
+                                                            const ClosestHit* hint) const {
+  ClosestHit best;
+  best.distance2 = std::numeric_limits<double>::infinity();
+  auto accept = [&](std::uint32_t tri) { return faces(tri, facing); };
+  if (hint && hint->triangle < corners_.size() && accept(hint->triangle)) test_triangle(q, hint->triangle, best);
+  if (!nodes_.empty()) search(q, best, accept);
   return best;
 }
 

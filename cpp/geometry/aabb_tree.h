@@ -50,6 +50,13 @@ class TriangleTree {
   // Warm start: the hint's triangle (typically the previous hit of a nearby query) gives
   // the initial bound, which prunes most of the tree at once.
   ClosestHit closest_point(const Point& q, const ClosestHit& hint) const;
+  // Nearest point among the triangles whose normal (right-hand rule) points to the side of
+  // `facing`: dot(normal, facing) > 0. A vertex of a thin part looks for its own sheet this way,
+  // not the opposite side that may lie nearer (see remesh/reference.cpp). The hint as above; a
+  // hint that does not face is ignored. triangle == UINT32_MAX when no triangle faces that way.
+  ClosestHit closest_point_facing(const Point& q, const Vec3& facing, const ClosestHit* hint = nullptr) const;
+  // Whether tree triangle `tri` faces the side of `facing` (as above).
+  bool faces(std::uint32_t tri, const Vec3& facing) const;
   // Nearest intersection with t >= 0 of the ray origin + t*dir, front or back side.
   RayHit intersect_ray(const Point& origin, const Vec3& dir) const;
 
@@ -66,7 +73,8 @@ class TriangleTree {
                       std::uint32_t count, int depth) const;
   std::uint32_t build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
                           std::uint32_t first, std::uint32_t count, int depth);
-  void search(const Point& q, ClosestHit& best) const;
+  template <class Accept>
+  void search(const Point& q, ClosestHit& best, Accept&& accept) const;
   void test_triangle(const Point& q, std::uint32_t tri, ClosestHit& best) const;
 
   std::vector<Point> points_;

@@ -114,4 +114,25 @@ void append_uint(std::string& out, uint64_t v) {
   out.append(buf, r.ptr);
 }
 
+void append_point_line(std::string& out, const char* prefix, const std::array<double, 3>& p) {
+  out += prefix;
+  append_double(out, p[0]);
+  out += ' ';
+  append_double(out, p[1]);
+  out += ' ';
+  append_double(out, p[2]);
+  out += '\n';
+}
+
+void append_triangle_line(std::string& out, const char* prefix, const std::array<uint32_t, 3>& t,
+                          uint64_t index_base) {
+  out += prefix;
+  append_uint(out, t[0] + index_base);
+  out += ' ';
+  append_uint(out, t[1] + index_base);
+  out += ' ';
+  append_uint(out, t[2] + index_base);
+  out += '\n';
+}
+
 }  // namespace adasculpt::io::detail

@@ -2,6 +2,7 @@
 // Internal helpers shared by the per-format readers and writers (not part of
 // the public interface; include io/mesh_io.h instead).
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -57,6 +58,11 @@ void check_writable(const PolygonSoup& soup);
 // to_chars is unavailable (WebAssembly build).
 void append_double(std::string& out, double v);
 void append_uint(std::string& out, uint64_t v);
+// One text line of a writer: `prefix`, the three values separated by spaces, a newline. Triangle
+// corners are written plus `index_base` (OBJ counts from 1, OFF from 0).
+void append_point_line(std::string& out, const char* prefix, const std::array<double, 3>& p);
+void append_triangle_line(std::string& out, const char* prefix, const std::array<uint32_t, 3>& t,
+                          uint64_t index_base);
 
 // Per-format entry points; `name` is only used to prefix error messages.
 PolygonSoup read_off(const char* data, size_t size, const std::string& name);

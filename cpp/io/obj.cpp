@@ -122,24 +122,8 @@ PolygonSoup read_obj(const char* data, size_t size, const std::string& name) {
 
 void write_obj(const PolygonSoup& soup, std::string& out) {
   out += "# written by adasculpt\n";
-  for (const auto& p : soup.points) {
-    out += "v ";
-    append_double(out, p[0]);
-    out += ' ';
-    append_double(out, p[1]);
-    out += ' ';
-    append_double(out, p[2]);
-    out += '\n';
-  }
-  for (const auto& t : soup.triangles) {
-    out += "f ";
-    append_uint(out, uint64_t(t[0]) + 1);
-    out += ' ';
-    append_uint(out, uint64_t(t[1]) + 1);
-    out += ' ';
-    append_uint(out, uint64_t(t[2]) + 1);
-    out += '\n';
-  }
+  for (const auto& p : soup.points) append_point_line(out, "v ", p);
+  for (const auto& t : soup.triangles) append_triangle_line(out, "f ", t, 1);
 }
 
 }  // namespace adasculpt::io::detail

@@ -145,23 +145,8 @@ void write_off(const PolygonSoup& soup, std::string& out) {
   out += ' ';
   append_uint(out, soup.triangles.size());
   out += " 0\n";
-  for (const auto& p : soup.points) {
-    append_double(out, p[0]);
-    out += ' ';
-    append_double(out, p[1]);
-    out += ' ';
-    append_double(out, p[2]);
-    out += '\n';
-  }
-  for (const auto& t : soup.triangles) {
-    out += "3 ";
-    append_uint(out, t[0]);
-    out += ' ';
-    append_uint(out, t[1]);
-    out += ' ';
-    append_uint(out, t[2]);
-    out += '\n';
-  }
+  for (const auto& p : soup.points) append_point_line(out, "", p);
+  for (const auto& t : soup.triangles) append_triangle_line(out, "3 ", t, 0);
 }
 
 }  // namespace adasculpt::io::detail

@@ -200,6 +200,8 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
 
 void Remesher::Impl::relax_vertices() {
   new_positions.resize(scope_vertices.size());
+  const bool keep_shape = keep_fan_shapes;
+  if (keep_shape) fan_shapes.assign(scope_vertices.size(), FanShape{Vec3(0.0), false});
   mesh::resize_scratch(relax_faces, mesh.faces_size());
   mesh::resize_scratch(face_seen, mesh.faces_size(), 0u);
   if (++face_run == 0) {
@@ -271,14 +273,20 @@ void Remesher::Impl::relax_vertices() {
     Vec3 normal(0.0);
     Point c(0.0);
     double weight = 0;
+    FanCreaseTest crease;
     for_each_outgoing(hc, vh, v, [&](Halfedge h) {
       const mesh::Face f = hc[h.idx].face;
-      if (!f.is_valid()) return;
+      if (!f.is_valid()) {
+        if (keep_shape) crease.gap();
+        return;
+      }
       const RelaxFace& t = face_terms(f);
       normal += t.normal;
       c += t.weighted_centre;
       weight += t.weight;
+      if (keep_shape) crease.add(t.normal);
     });
+    if (keep_shape) fan_shapes[i] = {normal, crease.creased()};  // for the projection (safety.cpp)
     double nl = glm::length(normal);
     if (weight <= 0 || nl <= 0) continue;
     normal /= nl;
@@ -292,11 +300,6 @@ void Remesher::Impl::relax_vertices() {
     if (!vdel[v] && sc[v] == kActive && vcl[v] != kCorner) out[v] = new_positions[i];  // movable(v)
   }
   if (mirror_axis >= 0) symmetrize_positions();
-}
-
-void Remesher::Impl::project_vertices() {
-  for (Vertex v : scope_vertices)
-    if (!mesh.is_deleted(v) && movable(v)) project(v);
 }
 
 // Removes triangles with an angle below `angle_deg` (zero-area and needle triangles of the

@@ -87,8 +87,12 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   stats.collapses = collapse_short_edges();
   stats.flips = flip_edges();
   stats.flips += flip_for_angles(kPoorAngleDeg * M_PI / 180.0);
+  const bool guarded = do_project && has_reference;
+  if (guarded) remember_positions();
+  keep_fan_shapes = guarded;
   relax_vertices();
-  if (do_project && has_reference) project_vertices();
+  keep_fan_shapes = false;
+  if (guarded) project_vertices_guarded();
   fix_bad_faces(kSliverAngleDeg);
   return stats;
 }
@@ -99,7 +103,9 @@ IterationStats Remesher::iterate() {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
     m.enter_whole_mesh();
     m.build_reference();
+    m.tolerance_scale = Impl::kCleanupTolerance;
     m.fix_bad_faces(kDegenerateAngleDeg);
+    m.tolerance_scale = 1.0;
   }
   m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
   m.region_calls_since_sizing = 0;
@@ -204,6 +210,16 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
       region.push_back(v);
     }
   return stats;
+}
+
+bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0; }
+
+void Remesher::end_region_sequence(const std::vector<Vertex>& vertices) {
+  Impl& m = *impl_;
+  const size_t n = m.mesh.vertices_size();
+  for (Vertex v : vertices)
+    if (v.idx < n) m.sizing[v] = 0.0;
+  m.region_calls_since_sizing = 0;
 }
 
 size_t Remesher::polish() {

@@ -89,6 +89,14 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
+  // The next iterate_region measures the sizing again (it does every few calls): a caller with
+  // a frame budget can give that frame's other work less.
+  bool sizing_due() const;
+  // Region iterations measure the sizing of their scope (kept per vertex) every few calls. A
+  // sequence of them ends (a brush stroke): the sizing of `vertices` goes back to unmeasured and
+  // the next call measures again, so that what a stroke does depends on the mesh only, not on
+  // the strokes before it (an undone stroke drawn again gives the same mesh).
+  void end_region_sequence(const std::vector<Vertex>& vertices);
   // Mirror symmetry for region iterations (brush strokes with symmetry on). When the mesh is
   // exactly symmetric across the plane where coordinate `axis` is 0 (geometry::find_mirror_map),
   // iterate_region does every split, collapse, flip and move on both vertices/edges of a mirror

@@ -224,7 +224,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
       for (const Vec3& d : dirs) {
         mesh.position(v) = best_p + h * d;
         ref_hint[v] = best_hint;
-        project(v);
+        project(v, normal);  // the fan's normal at the start: which sheet v is on
         ++evaluations;
         const double q = fan_quality(mesh.position(v));
         if (q >= floor) tried[n_tried++] = {q, mesh.position(v), ref_hint[v], sizing[v]};

@@ -35,6 +35,23 @@ constexpr int kMaxStampsPerSample = 32;
 // computation (native, on the 69k-face bunny: 1.16 ms -> 0.73 ms for the scan). Faces are visited
 // in index order, the first within the bound and then only a strictly closer one wins, so the
 // result is the first face in index order at the smallest distance, on every build.
+// True when p lies on one of v's triangles: within a thousandth of the longer of v's shortest edge
+// and sqrt(extra_bound2) of the closest point around v (then stored in *on_surface). The shortcut
+// of both locates below; the float precision of the render buffers sets the tolerance.
+bool on_surface_near(const mesh::SurfaceMesh& mesh, mesh::Vertex v, const Point& p, double extra_bound2,
+                     Point* on_surface) {
+  double shortest2 = std::numeric_limits<double>::infinity();
+  for (mesh::Vertex w : mesh.vertices(v)) {
+    const Vec3 e = mesh.position(w) - mesh.position(v);
+    shortest2 = std::min(shortest2, glm::dot(e, e));
+  }
+  const Point q = deform::closest_point_around(mesh, v, p);
+  const Vec3 d = q - p;
+  if (!(glm::dot(d, d) <= 1e-6 * std::max(shortest2, extra_bound2))) return false;
+  *on_surface = q;
+  return true;
+}
+
 mesh::Vertex locate(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_surface) {
   const Point* pos = mesh.positions().data();
   const std::uint8_t* vdel = mesh.vertex_deleted_data();
@@ -58,20 +75,7 @@ mesh::Vertex locate(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_sur
   // can be meaningfully closer and the face scan (2.7 ms of WebAssembly on the 69k-face bunny) is
   // skipped. Otherwise (p off the surface, or the nearest vertex on another sheet of a thin part)
   // the scan decides.
-  {
-    const mesh::Vertex v(nearest);
-    double shortest2 = std::numeric_limits<double>::infinity();
-    for (mesh::Vertex w : mesh.vertices(v)) {
-      const Vec3 e = mesh.position(w) - mesh.position(v);
-      shortest2 = std::min(shortest2, glm::dot(e, e));
-    }
-    const Point q = deform::closest_point_around(mesh, v, p);
-    const Vec3 d = q - p;
-    if (glm::dot(d, d) <= 1e-6 * std::max(shortest2, bound)) {
-      *on_surface = q;
-      return v;
-    }
-  }
+  if (on_surface_near(mesh, mesh::Vertex(nearest), p, bound, on_surface)) return mesh::Vertex(nearest);
 
   const auto* hc = mesh.halfedge_connectivity_data();
   const mesh::Halfedge* fh = mesh.face_halfedge_data();
@@ -125,16 +129,7 @@ mesh::Vertex locate_by_walking(const mesh::SurfaceMesh& mesh, mesh::Vertex hint,
   if (!hint.is_valid() || hint.idx >= mesh.vertices_size() || mesh.is_deleted(hint) || mesh.is_isolated(hint))
     return mesh::Vertex();
   const mesh::Vertex v = deform::walk_to_nearest_vertex(mesh, hint, p);
-  double shortest2 = std::numeric_limits<double>::infinity();
-  for (mesh::Vertex w : mesh.vertices(v)) {
-    const Vec3 e = mesh.position(w) - mesh.position(v);
-    shortest2 = std::min(shortest2, glm::dot(e, e));
-  }
-  const Point q = deform::closest_point_around(mesh, v, p);
-  const Vec3 d = q - p;
-  if (!(glm::dot(d, d) <= 1e-6 * shortest2)) return mesh::Vertex();
-  *on_surface = q;
-  return v;
+  return on_surface_near(mesh, v, p, 0.0, on_surface) ? v : mesh::Vertex();
 }
 
 Vec3 mirrored(Vec3 v, int axis) {
@@ -142,6 +137,10 @@ Vec3 mirrored(Vec3 v, int axis) {
   return v;
 }
 }  // namespace
+
+mesh::Vertex locate_on_surface(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_surface) {
+  return locate(mesh, p, on_surface);
+}
 
 size_t stroke_face_budget(size_t faces_at_start) {
   const size_t grown = std::max(kStrokeGrowthFactor * faces_at_start, kStrokeFaceFloor);

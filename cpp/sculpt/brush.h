@@ -50,6 +50,12 @@ constexpr size_t kStrokeFaceFloor = 250000;
 constexpr size_t kStrokeFaceCeiling = 3000000;
 size_t stroke_face_budget(size_t faces_at_start);
 
+// The surface point nearest p (*on_surface) and the vertex nearest that point: a scan of the
+// vertices, and of the faces only when p is not on the surface around the nearest vertex (the
+// stroke's own start, and a grab's press: an AABB tree of the whole surface took 1 s to build at
+// 2M triangles, for one closest point). Throws std::invalid_argument when the mesh has no face.
+mesh::Vertex locate_on_surface(const mesh::SurfaceMesh& mesh, const Point& p, Point* on_surface);
+
 class BrushStroker {
  public:
   void begin(const deform::BrushSettings& settings);

@@ -29,11 +29,14 @@ async function main() {
   const Module = await loadModule();
   const session = new Module.Session();
   session.loadBytes(new Uint8Array(fs.readFileSync(dragon)), 'dragon.off');
-  session.replay(JSON.stringify(prepare));
+  session.replay(prepare);
   const figures = [];
   let capped = false;
   for (let i = 0; i < runs; i++) {
-    const r = JSON.parse(session.replay(JSON.stringify(pull)));
+    // The bindings return a plain object with camelCase keys (issue 20); the figures keep the
+    // core's names below.
+    const out = session.replay(pull);
+    const r = Object.fromEntries(Object.entries(out).map(([k, v]) => [k.replace(/[A-Z]/g, (c) => `_${c.toLowerCase()}`), v]));
     figures.push(r);
     capped = capped || r.roi_capped;
     session.undo();

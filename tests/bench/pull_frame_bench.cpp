@@ -14,12 +14,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>  // per-frame dumps under callgrind (ADASCULPT_PULL_FRAMES)
+#else
+#define CALLGRIND_DUMP_STATS_AT(x)
+#endif
 
 #include "deform/geodesic.h"
 #include "deform/handle_deformer.h"
@@ -133,13 +139,15 @@ void run_pull(benchmark::State& state, const mesh::SurfaceMesh& m, const char* l
   session.set_settings(s.settings);
   if (every_frame_solve) session.grab_options().field_solve = deform::FieldSolve::EveryFrame;
   std::vector<RunFigures> wall_runs, cpu_runs;
-  std::vector<double> roi, field, refine, deform, remesh;
+  std::vector<double> roi, field, refine, deform, remesh, begin_cpu;
   size_t region = 0;
   bool capped = false;
   for (auto _ : state) {
     for (int run = 0; run < kRuns; ++run) {
       std::vector<double> wall, cpu;
+      const double b0 = thread_cpu_ms();
       session.grab_begin(s.grab.center, s.grab.handle_radius, s.grab.roi_radius);
+      begin_cpu.push_back(thread_cpu_ms() - b0);  // the press: picking, the first ROI and system
       for (int i = 1; i <= kFrames; ++i) {
         const double c0 = thread_cpu_ms();
         const auto t0 = Clock::now();
@@ -153,6 +161,11 @@ void run_pull(benchmark::State& state, const mesh::SurfaceMesh& m, const char* l
         deform.push_back(f.deform_ms);
         remesh.push_back(f.remesh_ms);
         region = std::max(region, size_t(f.roi_vertices));
+        if (std::getenv("ADASCULPT_PULL_FRAMES")) {  // per-frame phases, to see what makes a slow frame slow
+          CALLGRIND_DUMP_STATS_AT(("frame " + std::to_string(i)).c_str());
+          std::printf("  run %d frame %2d cpu %6.2f roi %5.2f field %5.2f refine %5.2f deform %5.2f remesh %6.2f\n", run, i,
+                      cpu.back(), f.roi_ms, f.field_ms, f.refine_ms, f.deform_ms, f.remesh_ms);
+        }
         capped = capped || f.roi_capped;
         session.clear_changes();
       }
@@ -174,11 +187,12 @@ void run_pull(benchmark::State& state, const mesh::SurfaceMesh& m, const char* l
   state.counters["cpu_ms_p95"] = med(cpu_runs, &RunFigures::p95);
   state.counters["cpu_ms_max"] = med(cpu_runs, &RunFigures::max);
   std::printf("pull %-28s %7zu faces: frame ms median/p95/max wall %.2f / %.2f / %.2f, cpu %.2f / %.2f / %.2f; "
-              "phase medians roi %.2f field %.2f refine %.2f deform %.2f remesh %.2f; ROI up to %zu vertices%s\n",
+              "phase medians roi %.2f field %.2f refine %.2f deform %.2f remesh %.2f; ROI up to %zu vertices%s; "
+              "grab_begin cpu ms median %.2f\n",
               label, m.n_faces(), med(wall_runs, &RunFigures::median), med(wall_runs, &RunFigures::p95),
               med(wall_runs, &RunFigures::max), med(cpu_runs, &RunFigures::median), med(cpu_runs, &RunFigures::p95),
               med(cpu_runs, &RunFigures::max), median(roi), median(field), median(refine), median(deform),
-              median(remesh), region, capped ? " (capped)" : "");
+              median(remesh), region, capped ? " (capped)" : "", median(begin_cpu));
   std::fflush(stdout);
 }
 

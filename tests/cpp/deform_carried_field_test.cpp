@@ -12,19 +12,15 @@
 #include "deform/handle_deformer.h"
 #include "geometry/aabb_tree.h"
 #include "mesh/primitives.h"
+#include "geometry_test_util.h"
 #include "sculpt/session.h"
 
 using namespace adasculpt;
 using mesh::Vertex;
+using test::highest_point;
 
 namespace {
 
-Point top(const mesh::SurfaceMesh& m) {
-  Point best(0, 0, -1e300);
-  for (Vertex v : m.vertices())
-    if (m.position(v).z > best.z) best = m.position(v);
-  return best;
-}
 
 // A bi-Laplacian system of an n x n grid (uniform 5-point rows, w = 1 on the left column's
 // neighbours, 0 elsewhere outside): rows over the whole (n+2)^2 grid, columns the inner n^2.
@@ -79,7 +75,7 @@ TEST(DeformCarriedField, ARestingGrabConvergesToTheFullSolve) {
   deform::HandleDeformer d;  // carried by default
   ASSERT_EQ(d.options().field_solve, deform::FieldSolve::Carried);
   d.options().field_work_per_frame = 2e5;  // the exact solve spread over several frames
-  d.begin(m, top(m), 0.15, 0.9);
+  d.begin(m, highest_point(m), 0.15, 0.9);
   const deform::HandleTransform identity;
   d.step(m, identity, 1e-3);
   // The first frame's field is the radial profile: close, not exact.
@@ -103,7 +99,7 @@ TEST(DeformCarriedField, ARestingGrabConvergesToTheFullSolve) {
 TEST(DeformCarriedField, FieldCarriedThroughRemeshingStaysValid) {
   sculpt::Session s;
   s.load(mesh::make_icosphere(4));
-  s.grab_begin(top(s.mesh()), 0.15, 0.9);
+  s.grab_begin(highest_point(s.mesh()), 0.15, 0.9);
   for (int i = 1; i <= 30; ++i) {
     deform::HandleTransform t;
     t.translation = Vec3(0, 0, 0.6 * i / 30.0);
@@ -125,7 +121,7 @@ TEST(DeformCarriedField, CarriedPullStaysCloseToTheEveryFrameSolve) {
     sculpt::Session s;
     s.load(mesh::make_icosphere(4));
     s.grab_options().field_solve = mode;
-    s.grab_begin(top(s.mesh()), 0.15, 0.9);
+    s.grab_begin(highest_point(s.mesh()), 0.15, 0.9);
     for (int i = 1; i <= 30; ++i) {
       deform::HandleTransform t;
       t.translation = Vec3(0, 0, pull * i / 30.0);
@@ -155,7 +151,7 @@ TEST(DeformCarriedField, RoiIsCutToTheVertexBudgetAndSaysSo) {
   {
     sculpt::Session s;
     s.load(mesh::make_icosphere(5));  // 10k vertices
-    s.grab_begin(top(s.mesh()), 0.2, 1.2);
+    s.grab_begin(highest_point(s.mesh()), 0.2, 1.2);
     s.grab_drag(t);
     EXPECT_FALSE(s.last_frame().roi_capped);
     EXPECT_GT(s.last_frame().roi_vertices, 1500);
@@ -163,7 +159,7 @@ TEST(DeformCarriedField, RoiIsCutToTheVertexBudgetAndSaysSo) {
   sculpt::Session s;
   s.load(mesh::make_icosphere(5));
   s.grab_options().max_roi_vertices = 1000;
-  s.grab_begin(top(s.mesh()), 0.2, 1.2);
+  s.grab_begin(highest_point(s.mesh()), 0.2, 1.2);
   s.grab_drag(t);
   EXPECT_TRUE(s.last_frame().roi_capped);
   EXPECT_LE(s.last_frame().roi_vertices, 1000 + 50);  // + vertices the first frame's refinement added

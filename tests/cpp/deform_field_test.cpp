@@ -7,23 +7,16 @@
 
 #include "deform/handle_deformer.h"
 #include "mesh/primitives.h"
+#include "geometry_test_util.h"
 
 using namespace adasculpt;
 using mesh::Vertex;
-
-namespace {
-Point top(const mesh::SurfaceMesh& m) {
-  Point best(0, 0, -1e300);
-  for (Vertex v : m.vertices())
-    if (m.position(v).z > best.z) best = m.position(v);
-  return best;
-}
-}  // namespace
+using test::highest_point;
 
 TEST(DeformField, OneOnHandleZeroOutsideMonotoneBetween) {
   const mesh::SurfaceMesh m = mesh::make_icosphere(4);
   deform::HandleDeformer d;
-  d.begin(m, top(m), 0.15, 0.9);
+  d.begin(m, highest_point(m), 0.15, 0.9);
   d.compute_region_and_field(m);
   ASSERT_GT(d.handle_vertices().size(), 3u);
   ASSERT_GT(d.free_vertices().size(), 200u);
@@ -53,7 +46,7 @@ TEST(DeformField, PureTranslationWithoutFreeRegionMovesTheHandleRigidly) {
   mesh::SurfaceMesh m = mesh::make_icosphere(3);
   const mesh::SurfaceMesh before = m;
   deform::HandleDeformer d;
-  d.begin(m, top(m), 0.3, 0.3);
+  d.begin(m, highest_point(m), 0.3, 0.3);
   deform::HandleTransform t;
   t.translation = Vec3(0.05, -0.02, 0.1);
   auto& r = d.step(m, t, 1e-3);
@@ -70,14 +63,14 @@ TEST(DeformField, PureTranslationWithoutFreeRegionMovesTheHandleRigidly) {
     }
   }
   EXPECT_EQ(moved, r.n_handle);
-  EXPECT_EQ(glm::length(d.center() - (top(before) + t.translation)), 0.0);
+  EXPECT_EQ(glm::length(d.center() - (highest_point(before) + t.translation)), 0.0);
 }
 
 TEST(DeformField, TranslationWithTinyRoiIsRigidOnTheHandle) {
   mesh::SurfaceMesh m = mesh::make_icosphere(4);
   const mesh::SurfaceMesh before = m;
   deform::HandleDeformer d;
-  d.begin(m, top(m), 0.2, 0.25);
+  d.begin(m, highest_point(m), 0.2, 0.25);
   deform::HandleTransform t;
   t.translation = Vec3(0, 0, 0.02);
   d.step(m, t, 1.0);  // epsilon huge: no refinement
@@ -89,7 +82,7 @@ TEST(DeformField, IncrementsComposeToTheTotalOnTheHandle) {
   mesh::SurfaceMesh m = mesh::make_icosphere(3);
   const mesh::SurfaceMesh before = m;
   deform::HandleDeformer d;
-  const Point c = top(m);
+  const Point c = highest_point(m);
   d.begin(m, c, 0.25, 0.25);  // handle only: w = 1, rigid
   deform::HandleTransform total;
   const int n = 7;
@@ -107,7 +100,7 @@ TEST(DeformField, IncrementsComposeToTheTotalOnTheHandle) {
 TEST(DeformField, RefinementSplitsOnlyWhereTheDeformationBends) {
   mesh::SurfaceMesh m = mesh::make_icosphere(3);
   deform::HandleDeformer d;
-  d.begin(m, top(m), 0.2, 1.0);
+  d.begin(m, highest_point(m), 0.2, 1.0);
   deform::HandleTransform t;
   t.translation = Vec3(0, 0, 0.5);
   const size_t nv = m.n_vertices();
@@ -118,7 +111,7 @@ TEST(DeformField, RefinementSplitsOnlyWhereTheDeformationBends) {
   // With a huge epsilon nothing is split.
   deform::HandleDeformer d2;
   mesh::SurfaceMesh m2 = mesh::make_icosphere(3);
-  d2.begin(m2, top(m2), 0.2, 1.0);
+  d2.begin(m2, highest_point(m2), 0.2, 1.0);
   EXPECT_EQ(d2.step(m2, t, 10.0).splits, 0u);
 }
 
@@ -128,7 +121,7 @@ TEST(DeformField, CarriedFactorizationMatchesAFullSolve) {
   deform::DeformOptions carry;
   carry.reuse = deform::FieldReuse::CarryFactorization;
   deform::HandleDeformer a(carry), b;
-  const Point c = top(m);
+  const Point c = highest_point(m);
   a.begin(m, c, 0.15, 0.8);
   b.begin(m, c, 0.15, 0.8);
   a.compute_region_and_field(m);

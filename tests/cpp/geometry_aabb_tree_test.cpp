@@ -127,3 +127,55 @@ TEST(GeometryAabbTree, FaceOfSkipsDeletedFaces) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(tree.triangles()[t][k], v[k].idx);
   }
 }
+
+// A plate 0.002 thick: from just below its top, the nearest point is on the top, but among the
+// triangles facing down (a vertex of the bottom sheet looking for its own sheet) it is on the
+// bottom; against brute force over the facing triangles on random queries.
+TEST(GeometryAabbTree, ClosestPointFacingKeepsToItsSheet) {
+  const double t = 0.002;
+  std::vector<Point> pts;
+  for (double x : {0.0, 1.0})
+    for (double y : {0.0, 1.0})
+      for (double z : {0.0, t}) pts.push_back(Point(x, y, z));
+  // Index 4x + 2y + z; every triangle oriented outwards.
+  std::vector<std::array<std::uint32_t, 3>> tris = {
+      {0, 2, 6}, {0, 6, 4},  // bottom, normal -z
+      {1, 5, 7}, {1, 7, 3},  // top, normal +z
+      {0, 1, 3}, {0, 3, 2},  // x = 0
+      {4, 6, 7}, {4, 7, 5},  // x = 1
+      {0, 4, 5}, {0, 5, 1},  // y = 0
+      {2, 3, 7}, {2, 7, 6},  // y = 1
+  };
+  TriangleTree tree;
+  tree.build(pts, tris);
+  const Point q(0.5, 0.4, 0.0015);
+  EXPECT_NEAR(tree.closest_point(q).point.z, t, 1e-12);
+  const TriangleTree::ClosestHit down = tree.closest_point_facing(q, Vec3(0, 0, -1));
+  ASSERT_NE(down.triangle, UINT32_MAX);
+  EXPECT_NEAR(down.point.z, 0.0, 1e-12);
+  EXPECT_TRUE(tree.faces(down.triangle, Vec3(0, 0, -1)));
+  // A hint on the wrong sheet is ignored, not taken as the answer.
+  const TriangleTree::ClosestHit top = tree.closest_point(q);
+  const TriangleTree::ClosestHit from_top = tree.closest_point_facing(q, Vec3(0, 0, -1), &top);
+  EXPECT_NEAR(from_top.point.z, 0.0, 1e-12);
+
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.2, 1.2);
+  for (int i = 0; i < 200; ++i) {
+    const Point p(u(rng), u(rng), 0.01 * u(rng));
+    const Vec3 facing(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& tri : tree.triangles()) {
+      const Point &a = tree.points()[tri[0]], &b = tree.points()[tri[1]], &c = tree.points()[tri[2]];
+      if (!(glm::dot(glm::cross(b - a, c - a), facing) > 0)) continue;
+      double bary[3];
+      const Point cp = closest_point_on_triangle(p, a, b, c, bary);
+      best = std::min(best, glm::dot(cp - p, cp - p));
+    }
+    const TriangleTree::ClosestHit hit = tree.closest_point_facing(p, facing);
+    ASSERT_NE(hit.triangle, UINT32_MAX);
+    EXPECT_NEAR(hit.distance2, best, 1e-15);
+  }
+  // Nothing faces the zero vector.
+  EXPECT_EQ(tree.closest_point_facing(q, Vec3(0.0)).triangle, UINT32_MAX);
+}

@@ -14,6 +14,14 @@
 
 namespace adasculpt::test {
 
+// The vertex with the largest z (the grab tests pick the sphere's top there).
+inline Point highest_point(const mesh::SurfaceMesh& m) {
+  Point best(0, 0, -1e300);
+  for (mesh::Vertex v : m.vertices())
+    if (m.position(v).z > best.z) best = m.position(v);
+  return best;
+}
+
 // An open cylinder of radius r around the z axis: `around` segments, `rings` rows of
 // quads split into two triangles, rows as tall as the segments are wide.
 inline mesh::SurfaceMesh make_cylinder(double r, int around, int rings) {
