@@ -5,8 +5,10 @@
 // remesh: the timer waits until the app is idle. On the next visit the app offers to restore it.
 //
 // One record per key (the app's `autosave` option; the standalone page uses 'main'), in the
-// database 'adasculpt', store 'autosave'. Two tabs with the same key share one record: the last
-// write wins.
+// database 'adasculpt', store 'autosave', its state in pieces beside it (web/idb-chunks.js). Two tabs
+// with the same key share one record: the last write wins.
+import { deleteChunked, getChunked, putChunked } from './idb-chunks.js';
+
 export const DEBOUNCE_MS = 1000;
 export const HISTORY_BYTES = 96 * 1024 * 1024;
 const DB_NAME = 'adasculpt';
@@ -79,7 +81,7 @@ export function createAutosave(key, host) {
         version: 1, key, name: host.sourceName(), savedAt: Date.now(),
         vertices: counts.vertices, faces: counts.faces, settings, bytes: state.byteLength, state: state.buffer,
       };
-      await run(await db(), 'readwrite', (s) => s.put(record, key));
+      await run(await db(), 'readwrite', (s) => putChunked(s, key, record));
       return record;
     };
     writing = (async () => {
@@ -109,7 +111,8 @@ export function createAutosave(key, host) {
   }
 
   async function read() {
-    return (await run(await db(), 'readonly', (s) => s.get(key))) || null;
+    const d = await db();
+    return getChunked(d.transaction(STORE, 'readonly').objectStore(STORE), key);
   }
 
   function describe(r) {
@@ -189,7 +192,7 @@ export function createAutosave(key, host) {
     async clear() {
       hidePrompt();
       clearTimeout(timer);
-      await run(await db(), 'readwrite', (s) => s.delete(key));
+      await run(await db(), 'readwrite', (s) => deleteChunked(s, key));
       if (dirty) schedule(); // changes made while the offer was up
     },
     // Offers the saved session, if any (called once at start-up). Until it is answered nothing
