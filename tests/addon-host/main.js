@@ -13,8 +13,15 @@ let nextId = 1;
 const id = (o) => { if (!ids.has(o)) ids.set(o, nextId++); return ids.get(o); };
 const add = EventTarget.prototype.addEventListener;
 const remove = EventTarget.prototype.removeEventListener;
+// Playwright's injected script may add its own window listeners while it dispatches input (first a
+// '__playwright_global_listeners_check__' one, then the rest in the same task): not ours, not counted.
+let playwrightTask = false;
 EventTarget.prototype.addEventListener = function (type, fn, opts) {
-  if (fn) live.add(`${id(this)}:${id(fn)}:${key(this, type, fn, opts)}`);
+  if (String(type).startsWith('__playwright')) {
+    playwrightTask = true;
+    queueMicrotask(() => { playwrightTask = false; });
+  }
+  if (fn && !playwrightTask) live.add(`${id(this)}:${id(fn)}:${key(this, type, fn, opts)}`);
   return add.call(this, type, fn, opts);
 };
 EventTarget.prototype.removeEventListener = function (type, fn, opts) {
