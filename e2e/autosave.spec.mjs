@@ -91,6 +91,73 @@ test('a reload mid-session offers the autosave; Restore brings back the mesh and
   expect(errors).toEqual([]);
 });
 
+test('after the first whole state, a pull, undo or redo is saved as a small record; a reload restores exactly', async ({ page }) => {
+  const errors = watchErrors(page);
+  await page.goto('/');
+  await ready(page);
+  await pull(page, [0, 0, 1], [0, 0, 0.4]);
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  const full = await page.evaluate(() => window.app.autosave.saved());
+  expect(full.changes).toBe(0);                                  // the first write: the whole state
+  const h1 = await meshHash(page);
+
+  await pull(page, [1, 0, 0], [0.3, 0.1, 0]);
+  const t = await page.evaluate(async () => {
+    const t0 = performance.now();
+    const wrote = await window.app.autosave.flush();
+    return { wrote, ms: performance.now() - t0 };
+  });
+  expect(t.wrote).toBe(true);
+  let saved = await page.evaluate(() => window.app.autosave.saved());
+  expect(saved.changes).toBe(1);
+  expect(saved.lastBytes).toBeLessThan(full.bytes / 4);           // the pull's region, not the mesh
+  console.log(`autosave record of one pull: ${saved.lastBytes} bytes (whole state ${full.bytes}), ${t.ms.toFixed(1)} ms`);
+  const h2 = await meshHash(page);
+  await page.evaluate(() => window.app.undo());
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  await page.evaluate(() => window.app.redo());
+  await page.evaluate(() => window.app.undo());
+  await page.evaluate(() => window.app.setParams({ epsilon: '0.07%' }));
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  saved = await page.evaluate(() => window.app.autosave.saved());
+  expect(saved.changes).toBe(3);
+  expect(saved.lastBytes).toBeLessThan(1000);                     // undo/redo marks and the settings
+  const before = await page.evaluate(() => window.app.stats());
+
+  await page.reload();
+  await ready(page);
+  await expect(prompt(page)).toBeVisible();
+  await prompt(page).getByRole('button', { name: 'Restore' }).click();
+  await expect(prompt(page)).toHaveCount(0);
+  await page.waitForFunction((v) => window.app.stats().vertices === v, before.vertices);
+  expect(await meshHash(page)).toBe(h1);
+  const after = await page.evaluate(() => window.app.stats());
+  expect(after.settings).toEqual(before.settings);
+  expect([after.canUndo, after.canRedo]).toEqual([true, true]);
+  expect(await page.evaluate(() => window.app.redo())).toBe(true);
+  expect(await meshHash(page)).toBe(h2);
+
+  // The restored session goes on with records after the same whole state; a reload restores those too.
+  await page.evaluate(() => window.app.undo());
+  await pull(page, [0, -1, 0], [0, -0.3, 0]);
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  expect((await page.evaluate(() => window.app.autosave.saved())).changes).toBe(4);
+  const h3 = await meshHash(page);
+  await page.reload();
+  await ready(page);
+  await prompt(page).getByRole('button', { name: 'Restore' }).click();
+  await expect(prompt(page)).toHaveCount(0);
+  await expect.poll(() => meshHash(page)).toBe(h3);
+  expect(await page.evaluate(() => window.app.stats().canRedo)).toBe(false);
+  expect(await page.evaluate(() => window.app.undo())).toBe(true);
+  expect(await meshHash(page)).toBe(h1);
+  // A whole remesh cannot be a record: the next write is a whole state again.
+  await page.evaluate(() => window.app.remesh({ iterations: 1 }));
+  expect(await page.evaluate(() => window.app.autosave.flush())).toBe(true);
+  expect((await page.evaluate(() => window.app.autosave.saved())).changes).toBe(0);
+  expect(errors).toEqual([]);
+});
+
 test('Discard deletes the autosave; nothing is offered on the next visit', async ({ page }) => {
   const errors = watchErrors(page);
   await page.goto('/');
