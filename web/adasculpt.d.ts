@@ -363,8 +363,12 @@ export interface AutosaveInfo {
   faces: number;
   /** `Date.now()` of the write. */
   savedAt: number;
-  /** Size of the saved state (mesh + history) in bytes. */
+  /** Size of the saved state (mesh + history) in bytes: the whole state plus its change records. */
   bytes: number;
+  /** Change records written after the whole state (each the changes of one autosave). */
+  changes: number;
+  /** Size of the newest record (the whole state's when there is none). */
+  lastBytes: number;
 }
 
 export interface Autosave {

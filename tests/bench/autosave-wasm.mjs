@@ -2,6 +2,7 @@
 // one whole state saved, then brush strokes, each followed by Session.saveChanges() as
 // web/autosave.js calls it; prints the time and size of the whole state and of each step's record,
 // then the restore of the whole state plus the records, checked against the live export.
+// ADASCULPT_BENCH_TORUS=2000000: a generated torus of that many triangles instead (the 2M target).
 //   node tests/bench/autosave-wasm.mjs [strokes]
 import fs from 'node:fs';
 import path from 'node:path';
@@ -30,24 +31,44 @@ function strokePath(pos, seed, step, n) {
   return Float64Array.from(out);
 }
 
+// A torus (radii 1 and 0.3) of about `faces` triangles.
+function loadTorus(s, faces) {
+  const n = Math.round(Math.sqrt(faces / 2) * 1.5), m = Math.round(faces / 2 / n);
+  const p = new Float64Array(3 * n * m), t = new Uint32Array(6 * n * m);
+  for (let i = 0; i < n; i++) {
+    for (let j = 0; j < m; j++) {
+      const u = (2 * Math.PI * i) / n, v = (2 * Math.PI * j) / m, r = 1 + 0.3 * Math.cos(v), k = i * m + j;
+      p.set([r * Math.cos(u), r * Math.sin(u), 0.3 * Math.sin(v)], 3 * k);
+      const a = k, b = ((i + 1) % n) * m + j, c = ((i + 1) % n) * m + ((j + 1) % m), d = i * m + ((j + 1) % m);
+      t.set([a, b, c, a, c, d], 6 * k);
+    }
+  }
+  s.loadArrays(p, t);
+  return `torus-${2 * n * m}`;
+}
+
 async function main() {
   if (skip) return console.log(`autosave (wasm): skipped, ${skip}`);
-  if (!fs.existsSync(meshPath)) return console.log(`autosave (wasm): skipped, ${meshPath} not found`);
+  const torus = Number(process.env.ADASCULPT_BENCH_TORUS || 0);
+  if (!torus && !fs.existsSync(meshPath)) return console.log(`autosave (wasm): skipped, ${meshPath} not found`);
   const M = await loadModule();
   const s = new M.Session(), b = new M.Session();
-  s.loadBytes(new Uint8Array(fs.readFileSync(meshPath)), path.basename(meshPath));
+  const name = torus ? loadTorus(s, torus) : path.basename(meshPath);
+  if (!torus) s.loadBytes(new Uint8Array(fs.readFileSync(meshPath)), name);
   const faces = s.stats().faces;
   const diag = s.settings().diagonal;
   let t0 = performance.now();
   const state = s.saveState(96 * 2 ** 20);
   const fullMs = ms(t0);
-  const records = [], times = [];
+  const records = [], times = [], ends = [];
   const pos = Float32Array.from(s.positions());
   for (let k = 0; k < strokes; k++) {
     const seed = Math.floor(((k * 7919) % 997) / 997 * (pos.length / 3));
     s.brushBegin({ tool: k % 2 ? 'inflate' : 'draw', radius: 0.02 * diag, strength: 0.5 });
     s.brushStamp(strokePath(pos, seed, 0.004 * diag, 8));
-    s.brushEnd();
+    t0 = performance.now();
+    s.brushEnd();  // closes the undo step and writes it for the next record (ChangeJournal::commit)
+    ends.push(ms(t0));
     if (k === strokes - 2) s.undo();  // an undo mark among the strokes
     t0 = performance.now();
     const r = s.saveChanges();
@@ -60,9 +81,10 @@ async function main() {
   const restoreMs = ms(t0);
   const same = Buffer.from(b.exportMesh('ply')).equals(Buffer.from(s.exportMesh('ply')));
   const kb = records.map((r) => r.byteLength / 1024);
-  console.log(`autosave ${path.basename(meshPath)} (wasm, ${faces} faces): whole state ${(state.byteLength / 2 ** 20).toFixed(1)} MB ` +
+  console.log(`autosave ${name} (wasm, ${faces} faces): whole state ${(state.byteLength / 2 ** 20).toFixed(1)} MB ` +
     `in ${fullMs.toFixed(0)} ms; per stroke record median ${median(times).toFixed(2)} ms, max ${Math.max(...times).toFixed(2)} ms, ` +
-    `median ${median(kb).toFixed(0)} KB, max ${Math.max(...kb).toFixed(0)} KB (${strokes} strokes); restore whole state + ` +
+    `median ${median(kb).toFixed(0)} KB, max ${Math.max(...kb).toFixed(0)} KB (${strokes} strokes; brushEnd, which ` +
+    `writes the step, median ${median(ends).toFixed(2)} ms); restore whole state + ` +
     `${records.length} records ${restoreMs.toFixed(0)} ms, ${same ? 'same export bytes' : 'EXPORT DIFFERS'}`);
   s.delete();
   b.delete();
