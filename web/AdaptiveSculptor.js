@@ -24,6 +24,7 @@ import { MeshBuffers } from './mesh-buffers.js';
 import { GrabTool } from './grab-tool.js';
 import { BrushTool, checkTool, createBrushApi } from './brush-tool.js';
 import { BrushCursor } from './brush-cursor.js';
+import { createMaskApi } from './mask-api.js';
 import { raycastSurface } from './surface-raycast.js';
 import {
   TOOL_DEFAULTS, RADIUS_RANGE_PCT, ROI_RANGE_PCT, lengthToPercent, checkStrength, checkSymmetry,
@@ -111,14 +112,17 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       },
       busy: () => this.busy || !this.session.hasMesh(),
     });
+    // The mask brush is the same pointer tool: Ctrl/Alt erase instead of invert, points without pressure.
+    const masking = () => this._tool === 'mask';
     this.brushTool = new BrushTool(view, {
       begin: ({ invert, point }) => this._guard(() => {
-        this.brush.begin({ invert, detail: this.detailLength(point) });
+        if (masking()) this.mask.begin({ erase: invert });
+        else this.brush.begin({ invert, detail: this.detailLength(point) });
         return true;
       }) === true,
       stabilizer: () => this._feel.stabilizer,
-      stamp: guard((samples) => this.brush.stamp(samples)),
-      end: guard(() => this.brush.end()),
+      stamp: guard((samples) => (masking() ? this.mask.stamp(withoutPressure(samples)) : this.brush.stamp(samples))),
+      end: guard(() => (masking() ? this.mask.end() : this.brush.end())),
       busy: () => this.busy, // no wasm call: without a mesh there is no geometry to hit
       radius: () => this.radius,
       scaleRadius: (f) => {
@@ -185,16 +189,22 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       session: this.session,
       stroke,
       defaults: () => ({
-        tool: this._tool === 'pull' ? 'draw' : this._tool, radius: this.radius, strength: this._strength,
-        symmetry: this._symmetry, spacing: this._feel.spacing, falloff: this._feel.falloff, detail: this.detailLength(),
+        tool: this._tool === 'pull' || this._tool === 'mask' ? 'draw' : this._tool, radius: this.radius,
+        strength: this._strength, symmetry: this._symmetry, spacing: this._feel.spacing, falloff: this._feel.falloff,
+        detail: this.detailLength(),
       }),
+    });
+    this.mask = createMaskApi({
+      session: this.session,
+      stroke,
+      defaults: () => ({ radius: this.radius, strength: this._strength }),
     });
   }
 
   // ---- settings
 
   get tool() { return this._tool; }
-  // 'pull' (the handle grab) or a brush; false (nothing changes) while a stroke is under way.
+  // 'pull' (the handle grab), a brush or 'mask'; false (nothing changes) while a stroke is under way.
   setTool(name) {
     checkTool(name);
     if (this.grabTool.active || this.brushTool.active) return false;
@@ -546,6 +556,13 @@ function weldedTriangles(geometry) {
   }
   welded.dispose();
   return { positions, indices: Uint32Array.from(tris) };
+}
+
+// [x, y, z, pressure, ...] -> [x, y, z, ...]: the mask brush has no pressure.
+function withoutPressure(samples) {
+  const out = new Float64Array((samples.length / 4) * 3);
+  for (let i = 0, j = 0; i < samples.length; i += 4, j += 3) out.set(samples.subarray(i, i + 3), j);
+  return out;
 }
 
 function toVec3(v, what) {

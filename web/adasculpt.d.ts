@@ -20,8 +20,8 @@ export type MeshFormat = 'obj' | 'stl' | 'ply' | 'off';
 
 /** The core's brushes. `'snakeHook'` drags the surface under the press along (its old name `'grab'` is still read in session files). */
 export type BrushToolName = 'draw' | 'inflate' | 'smooth' | 'flatten' | 'pinch' | 'crease' | 'snakeHook';
-/** What the pointer drives: `'pull'` is the paper's handle grab (`grab.begin/drag/end`), the others are brushes. */
-export type ToolName = 'pull' | BrushToolName;
+/** What the pointer drives: `'pull'` is the paper's handle grab (`grab.begin/drag/end`), `'mask'` paints the mask (`mask`), the others are brushes. */
+export type ToolName = 'pull' | BrushToolName | 'mask';
 
 /** Mirror strokes across the plane x, y or z = 0 of the mesh's own coordinates; `'off'` (or `'none'`) for none. */
 export type Symmetry = 'x' | 'y' | 'z' | 'off' | 'none';
@@ -221,10 +221,47 @@ export interface BrushApi {
   end(): void;
 }
 
+/** A mask stroke's settings; the missing ones are the brush's current radius and strength. */
+export interface MaskSettings {
+  /** Lower the mask instead of raising it (the pointer: Ctrl or Alt held at the press). */
+  erase?: boolean;
+  /** Absolute length; the stroke is solid over half of it and fades out to it. */
+  radius?: number;
+  /** 0..1: the mask value a paint stroke raises to (erase: lowers to 1 − strength). */
+  strength?: number;
+}
+
+/**
+ * The sculpting mask: one value in 0..1 per vertex. Fully masked vertices never move under any
+ * tool or pull and their triangles are not remeshed; partly masked ones move by (1 − mask). Shown
+ * as a dark tint (the geometry's `mask` attribute). Every operation is one undo step, dispatches
+ * `start`/`end` (tool `'mask'`), is kept by autosave and is a session file's `{"mask": {...}}` step.
+ */
+export interface MaskApi {
+  /** Every vertex to 0. */
+  clear(): void;
+  /** Every vertex to 1. */
+  fill(): void;
+  /** Every vertex to 1 − mask. */
+  invert(): void;
+  /** Every vertex to the mean of itself and its neighbours. */
+  blur(): void;
+  /** Every vertex to smoothstep(mask): away from ½ towards 0 or 1. */
+  sharpen(): void;
+  /** A whole paint (or erase) stroke along surface points. */
+  stroke(stroke: MaskSettings & { path: Vec3[] }): FrameResult;
+  /** The pointer's path: begin, a frame's surface points `[x, y, z, ...]` per `stamp`, end. */
+  begin(settings?: MaskSettings): void;
+  stamp(points: ArrayLike<number>): FrameResult;
+  end(): void;
+  /** A copy of the mask per vertex slot (the render buffers' numbering; 0 where unmasked or deleted). */
+  values(): Float32Array;
+}
+
 /** The same object as `adasculpt replay --json` prints, keys in camelCase (frames, frameMsMedian, frameMsP95, vertices, minAngleDeg, ...). */
 export type ReplayReport = Record<string, unknown>;
 
-/** A session file: `{"version": 1, "settings": {...}, "steps": [{"grab": ...}, {"brush": ...}, {"remesh": ...}, {"undo": n}, {"redo": n}]}` (cpp/sculpt/session_file.h). */
+/** A session file: `{"version": 1, "settings": {...}, "steps": [{"grab": ...}, {"brush": ...}, {"remesh": ...}, {"mask": {"op": ...}}, {"undo": n}, {"redo": n}]}` (cpp/sculpt/session_file.h). */
 export type SessionFile = string | { version: 1; settings?: Record<string, unknown>; steps: Record<string, unknown>[] };
 
 export interface SculptorOptions extends RemeshParams, ToolParams, FeelParams {
@@ -288,6 +325,7 @@ export declare class AdaptiveSculptor extends EventDispatcher<SculptorEventMap> 
   /** Programmatic strokes; they dispatch `start`/`change`/`end` like the pointer's. */
   readonly grab: GrabApi;
   readonly brush: BrushApi;
+  readonly mask: MaskApi;
 
   /** Listens to pointer events (and wheel) on the element until `disconnect()`. */
   connect(domElement: HTMLElement): void;
@@ -433,7 +471,9 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
   setParams(params: SculptParams): CoreSettings;
   readonly grab: GrabApi;
   readonly brush: BrushApi;
-  /** The current tool (palette, keys 1–8). */
+  /** The mask (`app.mask.clear()`, `invert()`, ...; the tool `'mask'`, key M, paints it). */
+  readonly mask: MaskApi;
+  /** The current tool (palette, keys 1–8 and M). */
   readonly tool: ToolName;
   setTool(name: ToolName): boolean;
   /**
@@ -501,7 +541,7 @@ export interface RenderChanges extends MeshCounts {
   reallocated: boolean; indicesChanged: boolean;
   vertexBegin: number; vertexEnd: number; faceBegin: number; faceEnd: number;
   vertexCount: number; faceCount: number; vertexCapacity: number; faceCapacity: number;
-  positionsPtr: number; normalsPtr: number; indicesPtr: number;
+  positionsPtr: number; normalsPtr: number; masksPtr: number; indicesPtr: number;
   timings: FrameTimings;
 }
 
@@ -524,6 +564,14 @@ export interface Session {
   brushStamp(samples: Float64Array): RenderChanges;
   brushEnd(): void;
   brushing(): boolean;
+  /** A mask operation, one undo step: `{op: 'clear' | 'fill' | 'invert' | 'blur' | 'sharpen'}` or `{op: 'paint' | 'erase', path: [[x, y, z], ...], radius, strength?}`. */
+  mask(op: { op: string; path?: number[][]; radius?: number; strength?: number }): RenderChanges;
+  maskBegin(op: { op: 'paint' | 'erase'; radius: number; strength?: number }): void;
+  maskStamp(points: Float64Array): RenderChanges;
+  maskEnd(): void;
+  masking(): boolean;
+  /** The mask per vertex slot, a view into wasm memory like `positions()`. */
+  maskValues(): Float32Array;
   remesh(iterations: number): void;
   /** `remesh` towards a constant edge length `detail` (absolute; 0: the settings). */
   remeshDetail(iterations: number, detail: number): void;

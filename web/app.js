@@ -66,7 +66,7 @@ export async function createSculptApp(container, options = {}) {
   let sourceName = opts.model ? String(opts.model).split(/[?#]/)[0].split('/').pop() : 'mesh';
   const autosave = opts.autosave ? createAutosave(String(opts.autosave), {
     session, toaster, root: opts.ui ? root : null,
-    busy: () => sculptor.busy || session.grabbing() || session.brushing(),
+    busy: () => sculptor.busy || session.grabbing() || session.brushing() || session.masking(),
     sourceName: () => sourceName,
     // A stroke's 'end' carries the counts: a whole-mesh quality pass here would cost an incremental
     // write (a few ms) 100-200 ms on the dragon.
@@ -166,7 +166,7 @@ export async function createSculptApp(container, options = {}) {
     clearTimeout(qualityTimer);
     qualityTimer = setTimeout(function settle() {
       if (disposed || !qualityStale) return;
-      if (session.grabbing() || session.brushing()) {
+      if (session.grabbing() || session.brushing() || session.masking()) {
         qualityTimer = setTimeout(settle, 250);
         return;
       }
@@ -231,6 +231,9 @@ export async function createSculptApp(container, options = {}) {
 
     get grab() { return grab; },
     get brush() { return brush; },
+    // The mask (tool 'mask', key M): clear(), fill(), invert(), blur(), sharpen(), stroke({path, erase}),
+    // begin/stamp/end, values(); each operation one undo step.
+    get mask() { return sculptor.mask; },
     get tool() { return sculptor.tool; },
     // frame(), set('front'|'back'|'left'|'right'|'top'|'bottom'), orthographic(bool), state()
     get view() { return views.view; },
@@ -397,6 +400,7 @@ export async function createSculptApp(container, options = {}) {
         radius: `${state.brushRadius}%`, strength: state.brushStrength, symmetry: state.symmetry,
       })),
       display: () => applyDisplay(),
+      mask: (op) => guard(() => sculptor.mask[op]()),
       undo: () => guard(() => api.undo()),
       redo: () => guard(() => api.redo()),
     });
@@ -432,7 +436,7 @@ export async function createSculptApp(container, options = {}) {
   function showToolState() {
     if (help) help.textContent = helpText(sculptor.tool);
     const p = sculptor.params;
-    const brushTool = sculptor.tool !== 'pull';
+    const brushTool = sculptor.tool !== 'pull' && sculptor.tool !== 'mask'; // (the mask brush has no symmetry)
     viewer.setMirror(brushTool && p.symmetry && p.symmetry !== 'off' ? p.symmetry : null, sculptor.buffers.boundingBox());
   }
   sculptor.addEventListener('tool', showToolState);

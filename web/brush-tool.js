@@ -19,7 +19,8 @@ import { TouchGate } from './touch-gate.js';
 // lastSamples keeps a long stroke's first samples only (it is for scripts and tests, not the stroke).
 const MAX_SAMPLES_KEPT = 10000;
 
-// The tool palette: the paper's handle grab (web/grab-tool.js) and the core's seven brushes.
+// The tool palette: the paper's handle grab (web/grab-tool.js), the core's seven brushes and the
+// mask brush (web/mask-api.js).
 // `name` is what setTool takes and, for brushes, the core's tool name. ('grab' is not a tool name:
 // the handle grab is 'pull' and app.grab; the snake-hook brush was called 'grab' before, and the core
 // still reads that in old session files.)
@@ -32,6 +33,7 @@ export const TOOLS = [
   { name: 'pinch', label: 'Pinch', key: '6', title: 'pull the surface towards the stroke' },
   { name: 'crease', label: 'Crease', key: '7', title: 'cut a sharp groove (inverted: a ridge)' },
   { name: 'snakeHook', label: 'Snake hook', key: '8', title: 'drag the surface under the press along' },
+  { name: 'mask', label: 'Mask', key: 'm', title: 'paint a mask (Ctrl/Alt: erase); masked parts never move' },
 ];
 
 export function checkTool(name) {
@@ -94,6 +96,7 @@ function coreSettings(s, d) {
   const symmetry = checkSymmetry(s.symmetry ?? d.symmetry);
   const tool = s.tool ?? d.tool;
   if (tool === 'pull') throw new Error("brush: 'pull' is the handle grab (grab.begin/drag/end), not a brush");
+  if (tool === 'mask') throw new Error("brush: 'mask' is the mask brush (mask.stroke/begin/stamp/end), not a brush");
   return {
     tool: checkTool(tool),
     radius: s.radius ?? d.radius,

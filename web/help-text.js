@@ -7,8 +7,9 @@ const VIEW_HELP = 'drag off the model: orbit · middle drag: orbit around the po
 export function helpText(tool) {
   const t = TOOLS.find((x) => x.name === tool);
   const name = t ? t.label : tool;
-  const what = tool === 'pull'
-    ? 'Pull: drag on the model · during the drag R rotate, S scale, wheel scale · [ ] ROI · { } handle'
-    : `${name}: stroke on the model · Ctrl/Alt invert · [ ] or Shift+wheel radius · - = strength`;
-  return `${what} · 1 Pull, 2–8 brushes · ${VIEW_HELP}`;
+  let what;
+  if (tool === 'pull') what = 'Pull: drag on the model · during the drag R rotate, S scale, wheel scale · [ ] ROI · { } handle';
+  else if (tool === 'mask') what = 'Mask: paint on the model · Ctrl/Alt erase · [ ] or Shift+wheel radius · - = strength · panel: clear, invert, blur, sharpen';
+  else what = `${name}: stroke on the model · Ctrl/Alt invert · [ ] or Shift+wheel radius · - = strength`;
+  return `${what} · 1 Pull, 2–8 brushes, M mask · ${VIEW_HELP}`;
 }

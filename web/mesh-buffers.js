@@ -1,5 +1,5 @@
 // The three.js side of the core's RenderBuffers, written into a BufferGeometry that is not ours to
-// replace (the host's mesh.geometry): positions, normals and indices per vertex/face SLOT, and
+// replace (the host's mesh.geometry): positions, normals, the mask and indices per vertex/face SLOT, and
 // optionally a wireframe LineSegments geometry sharing the positions. apply() copies only the dirty
 // ranges the core reports out of wasm memory and marks them with addUpdateRange, so the GPU upload
 // follows the brushed region, not the mesh. The core's buffers grow with headroom; when their
@@ -29,6 +29,7 @@ export class MeshBuffers {
     const heap = this.M.HEAPU8.buffer;
     const pos = new Float32Array(heap, ch.positionsPtr, ch.vertexCount * 3);
     const nrm = new Float32Array(heap, ch.normalsPtr, ch.vertexCount * 3);
+    const msk = new Float32Array(heap, ch.masksPtr, ch.vertexCount);
     const idx = new Uint32Array(heap, ch.indicesPtr, ch.faceCount * 3);
     const fresh = !this.allocated || ch.reallocated ||
       ch.vertexCapacity !== this.vertexCapacity || ch.faceCapacity !== this.faceCapacity;
@@ -41,6 +42,7 @@ export class MeshBuffers {
     if (ve > vb) {
       copyRange(g.attributes.position, pos, 3 * vb, 3 * ve, fresh);
       copyRange(g.attributes.normal, nrm, 3 * vb, 3 * ve, fresh);
+      copyRange(g.attributes.mask, msk, vb, ve, fresh);
     }
     if (fe > fb && (fresh || ch.indicesChanged)) {
       copyRange(g.index, idx, 3 * fb, 3 * fe, fresh);
@@ -65,6 +67,8 @@ export class MeshBuffers {
     const position = dynamic(new Float32Array(3 * vertexCapacity), 3);
     g.setAttribute('position', position);
     g.setAttribute('normal', dynamic(new Float32Array(3 * vertexCapacity), 3));
+    // The sculpting mask per vertex (0..1), for a tint (viewer.js: addMaskTint; hosts may use it too).
+    g.setAttribute('mask', dynamic(new Float32Array(vertexCapacity), 1));
     g.setIndex(dynamic(new Uint32Array(3 * faceCapacity), 1));
     if (this.lines) {
       this.lines.dispose();

@@ -2,6 +2,7 @@
 // progress, files and history. Lengths are shown in percent of the bounding-box diagonal.
 import GUI from 'lil-gui';
 import { SYMMETRY } from './settings.js';
+import { MASK_OPS } from './mask-api.js';
 import { FALLOFFS } from './brush-feel.js';
 
 // The detail modes as the panel names them (web/brush-feel.js explains each).
@@ -57,6 +58,10 @@ export function createPanel(parent, state, actions) {
   showDetailSize();
   const floodButton = detail.add({ run: () => actions.floodFill() }, 'run').name('detail flood fill');
 
+  // The mask (tool M: paint, Ctrl/Alt erase; radius and strength are the brush's): masked parts never move.
+  const mask = gui.addFolder('Mask');
+  for (const op of MASK_OPS) mask.add({ [op]: () => actions.mask(op) }, op).name(`${op} mask`);
+
   const view = gui.addFolder('Display');
   view.add(state, 'matcap', actions.matcaps).name('matcap').onChange(() => actions.display());
   view.add(state, 'shading', ['matcap', 'standard']).name('material').onChange(() => actions.display());
@@ -82,7 +87,7 @@ export function createPanel(parent, state, actions) {
     },
     // Short views: only the Brush folder stays open (lil-gui scrolls the rest).
     compact() {
-      for (const f of [files, remesh, brush, detail, view, history]) f.close();
+      for (const f of [files, remesh, brush, detail, mask, view, history]) f.close();
       gui.domElement.classList.add('compact');
     },
     setHistory(canUndo, canRedo) {

@@ -1,4 +1,4 @@
-// The tool buttons on the left edge (aria-pressed shows the current tool) and the digit keys 1-8.
+// The tool buttons on the left edge (aria-pressed shows the current tool), the digit keys 1-8 and M.
 // The sculptor decides: setTool(name) returns false while a grab or stroke is under way.
 import { TOOLS } from './brush-tool.js';
 import { isTextInput } from './tool-events.js';
@@ -17,8 +17,8 @@ export class ToolPalette {
         const b = document.createElement('button');
         b.type = 'button';
         b.dataset.tool = t.name;
-        b.title = `${t.label} (${t.key}): ${t.title}`;
-        b.innerHTML = `<span class="key">${t.key}</span>${t.label}`;
+        b.title = `${t.label} (${t.key.toUpperCase()}): ${t.title}`;
+        b.innerHTML = `<span class="key">${t.key.toUpperCase()}</span>${t.label}`;
         b.addEventListener('click', () => sculptor.setTool(t.name));
         this.buttons.set(t.name, b);
         this.el.appendChild(b);
@@ -29,7 +29,7 @@ export class ToolPalette {
     this.onKey = (e) => {
       // The numpad's digits are view keys (web/view-controls.js), not tools.
       if (e.ctrlKey || e.metaKey || e.altKey || e.code?.startsWith('Numpad') || isTextInput(e.target)) return;
-      const t = TOOLS.find((x) => x.key === e.key);
+      const t = TOOLS.find((x) => x.key === e.key.toLowerCase()); // M or m
       if (t && sculptor.setTool(t.name)) e.preventDefault();
     };
     keyTarget.addEventListener('keydown', this.onKey);

@@ -7,6 +7,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 const HANDLE_COLOR = new THREE.Color(1.0, 0.55, 0.15);
 const ROI_COLOR = new THREE.Color(0.25, 0.6, 1.0);
+const MASK_TINT = new THREE.Color(0.28, 0.32, 0.45);
 
 export function createViewer(root) {
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -38,7 +39,7 @@ export function createViewer(root) {
   const matcaps = Object.fromEntries(Object.entries(MATCAPS).map(([k, spec]) => [k, makeMatcap(spec)]));
   const matcap = new THREE.MeshMatcapMaterial({ matcap: matcaps.clay, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
   const standard = new THREE.MeshStandardMaterial({ color: 0xc9a58f, roughness: 0.55, metalness: 0.0, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
-  for (const m of [matcap, standard]) addBrushFalloff(m, brush);
+  for (const m of [matcap, standard]) addBrushFalloff(m, brush, addMaskTint);
   const wireMaterial = new THREE.LineBasicMaterial({ color: 0x1b1d22, transparent: true, opacity: 0.45 });
 
   const surface = new THREE.Mesh(new THREE.BufferGeometry(), matcap);
@@ -256,8 +257,8 @@ export function createViewer(root) {
 
 // The falloff the grab will apply, drawn on the surface: the handle region solid, the ROI fading
 // out, and thin rings at both radii. Euclidean distance to the centre, a good preview of the
-// geodesic radii the core uses on the parts a user grabs.
-function addBrushFalloff(material, brush) {
+// geodesic radii the core uses on the parts a user grabs. `more`: further shader changes (the mask tint).
+function addBrushFalloff(material, brush, more) {
   material.onBeforeCompile = (shader) => {
     Object.assign(shader.uniforms, brush);
     shader.vertexShader = shader.vertexShader
@@ -282,7 +283,21 @@ if (uBrushOn > 0.5) {
   float ring = max(1.0 - abs(d - uBrushRadii.x) / w, 1.0 - abs(d - uBrushRadii.y) / w);
   gl_FragColor.rgb = mix(c, vec3(1.0), 0.8 * clamp(ring, 0.0, 1.0));
 }`);
+    more(shader); // (after: its code goes right after the include, before the preview's)
   };
+}
+
+// The sculpting mask (the geometry's 'mask' attribute, web/mesh-buffers.js) as a dark tint: a
+// fully masked part is drawn at a third of its brightness, bluish, so the user sees what will not
+// move. A geometry without the attribute reads 0 (WebGL's default for a disabled attribute).
+function addMaskTint(shader) {
+  shader.vertexShader = shader.vertexShader
+    .replace('#include <common>', '#include <common>\nattribute float mask;\nvarying float vMask;')
+    .replace('#include <begin_vertex>', '#include <begin_vertex>\nvMask = mask;');
+  shader.fragmentShader = shader.fragmentShader
+    .replace('#include <common>', '#include <common>\nvarying float vMask;')
+    .replace('#include <dithering_fragment>', `#include <dithering_fragment>
+gl_FragColor.rgb = mix(gl_FragColor.rgb, gl_FragColor.rgb * vec3(${rgb(MASK_TINT)}), clamp(vMask, 0.0, 1.0));`);
 }
 
 function rgb(c) { return `${c.r.toFixed(3)}, ${c.g.toFixed(3)}, ${c.b.toFixed(3)}`; }

@@ -348,6 +348,45 @@ class SessionHandle {
   }
   bool brushing() const { return session_.brushing(); }
 
+  // Masking (sculpt/mask.h), each call one undo step: mask({op: 'invert'}), mask({op: 'paint',
+  // path: [[x, y, z], ...], radius, strength}); a stroke as the pointer moves: maskBegin({op:
+  // 'paint' | 'erase', radius, strength}), maskStamp([x, y, z, x, y, z, ...]) per frame, maskEnd().
+  // mask() and maskStamp() return changes() (as brushStamp); the values are maskValues().
+  val mask(const val& op) {
+    return guarded(val::null(), [&] {
+      session_.mask(sculpt::parse_mask_op(object_arg(op, "mask", true)));
+      sync(false);
+      return changes();
+    });
+  }
+  void mask_begin(const val& op) {
+    guarded_void([&] {
+      session_.mask_begin(sculpt::parse_mask_op(object_arg(op, "maskBegin", true), "mask: ", true));
+      sync(false);
+    });
+  }
+  val mask_stamp(const val& points) {
+    return guarded(val::null(), [&] {
+      const std::vector<double> p = copy_typed_array<double>(points, "Float64Array");
+      if (p.empty() || p.size() % 3 != 0) throw std::invalid_argument("maskStamp: expected x, y, z for each of at least one point");
+      try {
+        for (size_t i = 0; i < p.size(); i += 3) session_.mask_stamp(Point(p[i], p[i + 1], p[i + 2]));
+      } catch (...) {
+        sync(false);
+        throw;
+      }
+      sync(false);
+      return changes();
+    });
+  }
+  void mask_end() {
+    guarded_void([&] {
+      session_.mask_end();
+      sync(false);
+    });
+  }
+  bool masking() const { return session_.masking(); }
+
   // detail > 0: every edge towards that absolute length (the detail flood fill); 0: the settings.
   void remesh_detail(int iterations, double detail) {
     guarded_void([&] {
@@ -443,6 +482,10 @@ class SessionHandle {
 
   val positions() const { return float_view(buffers_.positions(), buffers_.vertex_count()); }
   val normals() const { return float_view(buffers_.normals(), buffers_.vertex_count()); }
+  // One mask value per vertex slot (0 where unmasked), a view like positions().
+  val mask_values() const {
+    return val(emscripten::typed_memory_view(size_t(buffers_.vertex_count()), buffers_.masks()));
+  }
   val indices() const {
     return val(emscripten::typed_memory_view(3 * size_t(buffers_.face_count()), buffers_.indices()));
   }
@@ -469,6 +512,7 @@ class SessionHandle {
     r.set("faceCapacity", double(buffers_.face_capacity()));
     r.set("positionsPtr", reinterpret_cast<std::uintptr_t>(buffers_.positions()));
     r.set("normalsPtr", reinterpret_cast<std::uintptr_t>(buffers_.normals()));
+    r.set("masksPtr", reinterpret_cast<std::uintptr_t>(buffers_.masks()));
     r.set("indicesPtr", reinterpret_cast<std::uintptr_t>(buffers_.indices()));
     val ms = val::object();
     ms.set("roi", t.roi_ms);
@@ -537,6 +581,12 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("brushStamp", &SessionHandle::brush_stamp)
       .function("brushEnd", &SessionHandle::brush_end)
       .function("brushing", &SessionHandle::brushing)
+      .function("mask", &SessionHandle::mask)
+      .function("maskBegin", &SessionHandle::mask_begin)
+      .function("maskStamp", &SessionHandle::mask_stamp)
+      .function("maskEnd", &SessionHandle::mask_end)
+      .function("masking", &SessionHandle::masking)
+      .function("maskValues", &SessionHandle::mask_values)
       .function("remesh", &SessionHandle::remesh)
       .function("remeshDetail", &SessionHandle::remesh_detail)
       .function("undo", &SessionHandle::undo)

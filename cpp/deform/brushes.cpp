@@ -11,6 +11,7 @@
 #include "geometry/triangle.h"
 #include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
+#include "mesh/vertex_mask.h"
 
 namespace adasculpt::deform {
 
@@ -326,8 +327,13 @@ std::vector<Vertex>& BrushDeformer::apply(SurfaceMesh& mesh, const BrushSettings
   } else {
     for (int i = 0; i < n; ++i) displace(mesh, settings, stamps[i]);
   }
+  // The mask scales each vertex's share; a fully masked vertex is not written at all (bit for
+  // bit where it was). Its neighbours still join the remeshing region below: the remesher keeps
+  // masked vertices out of its scope itself.
+  const mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
   Point* pos = mesh.positions().data();
-  for (Vertex v : touched_) pos[v.idx] += sum_[v.idx] / double(count_[v.idx]);
+  for (Vertex v : touched_)
+    if (!mesh::fully_masked(mask, v)) pos[v.idx] += mesh::unmasked_fraction(mask, v) * (sum_[v.idx] / double(count_[v.idx]));
   moved_ = touched_.size();
   region_ = touched_;
   const auto* hc = mesh.halfedge_connectivity_data();

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/triangle.h"
+#include "mesh/vertex_mask.h"
 
 namespace adasculpt::deform {
 
@@ -426,6 +427,7 @@ double HandleDeformer::midpoint_field(Vertex a, Vertex b, const Point& pa, const
 size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, double epsilon) {
   split_edges_.clear();
   const double eps2 = epsilon * epsilon;
+  mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
   const Blender blend(inc);
   for (Vertex v : free_) {
     const Point& pv = mesh.position(v);
@@ -436,6 +438,8 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
       const Category cu = category(u);
       if (cu == kFree && u.idx < v.idx) continue;  // each free-free edge once
       if (cu == kOutside || cu == kRing2) continue;
+      // Splitting an edge at a fully masked vertex would change that vertex's triangles.
+      if (mesh::fully_masked(mask, v) || mesh::fully_masked(mask, u)) continue;
       const Point& pu = mesh.position(u);
       const double wu = field_[u.idx];
       const Point mid_of_deformed = 0.5 * (dv + blend(wu, center_, pu));
@@ -451,6 +455,7 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
     const Vertex a = mesh.vertex(e, 0), b = mesh.vertex(e, 1);
     const double w = midpoint_field(a, b, mesh.position(a), mesh.position(b));
     const Vertex m = mesh.split(e, 0.5 * (mesh.position(a) + mesh.position(b)));
+    if (mask.is_valid()) mask[m] = 0.5f * (mask[a] + mask[b]);  // (the array grew with the split)
     grow(mesh.vertices_size());
     set_category(m, kFree);
     index_[m.idx] = -1;
@@ -512,8 +517,18 @@ StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total
 
   t = Clock::now();
   const Blender blend(inc);
-  for (Vertex v : handle_) mesh.position(v) = blend(1.0, center_, mesh.position(v));
-  for (Vertex v : free_) mesh.position(v) = blend(field_[v.idx], center_, mesh.position(v));
+  const mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
+  auto move = [&](Vertex v, double weight) {
+    if (mesh::fully_masked(mask, v)) return;  // bit for bit where it was
+    Point& p = mesh.position(v);
+    if (mask.is_valid() && mask[v] > 0.0f) {
+      p += mesh::unmasked_fraction(mask, v) * (blend(weight, center_, p) - p);
+    } else {
+      p = blend(weight, center_, p);
+    }
+  };
+  for (Vertex v : handle_) move(v, 1.0);
+  for (Vertex v : free_) move(v, field_[v.idx]);
   center_ += inc.translation;
   previous_total_ = total;
   first_frame_ = false;

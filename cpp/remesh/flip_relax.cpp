@@ -372,7 +372,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       }
       if (!done) {
         Edge e = mesh.edge(hs[longest]);
-        if (!is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && mesh.is_flip_ok(e) &&
+        if (!is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && flip_spares_masked(e) && mesh.is_flip_ok(e) &&
             flip_geometry_ok(e, false)) {
           const Edge image = flip_partner(e);
           if (image.is_valid() && (image == e || mesh.is_flip_ok(image))) {

@@ -15,6 +15,10 @@ bool Remesher::enable_mirror(int axis) {
   disable_mirror();
   std::vector<Vertex> image = geometry::find_mirror_map(m.mesh, axis);
   if (image.empty()) return false;
+  // A mask that is not its own mirror image would stop one side of a pair and not the other.
+  if (const mesh::VertexProperty<float> mask = mesh::find_mask(m.mesh); mask.is_valid())
+    for (Vertex v : m.mesh.vertices())
+      if (mask[v] != mask[image[v.idx]]) return false;
   m.mirror = m.mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
   m.mirror.vector() = std::move(image);
   m.mirror_axis = axis;

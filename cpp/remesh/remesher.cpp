@@ -120,15 +120,31 @@ IterationStats Remesher::iterate() {
 
 void Remesher::Impl::enter_whole_mesh() {
   scope_vertices.clear();
+  mask = mesh::find_mask(mesh);
   const std::uint8_t* deleted = mesh.vertex_deleted_data();
   std::uint8_t* sc = scope.vector().data();
   const mesh::Index n = static_cast<mesh::Index>(mesh.vertices_size());
   for (mesh::Index i = 0; i < n; ++i)
-    if (!deleted[i]) {
+    if (!deleted[i] && !masked(Vertex(i))) {
       sc[i] = kActive;
       scope_vertices.push_back(Vertex(i));
     }
+  if (mask.is_valid()) hold_around_masked();
   whole_mesh = true;
+}
+
+void Remesher::Impl::hold_around_masked() {
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Halfedge* vh = mesh.vertex_halfedge_data();
+  const std::uint8_t* deleted = mesh.vertex_deleted_data();
+  std::uint8_t* sc = scope.vector().data();
+  const mesh::Index n = static_cast<mesh::Index>(mesh.vertices_size());
+  for (mesh::Index i = 0; i < n; ++i)
+    if (!deleted[i] && masked(Vertex(i)))
+      for_each_outgoing(hc, vh, Vertex(i), [&](Halfedge h) {
+        std::uint8_t& s = sc[hc[h.idx].to.idx];
+        if (s == kActive) s = kHeld;
+      });
 }
 
 void Remesher::Impl::leave_whole_mesh() {
@@ -146,8 +162,9 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   m.reference_stale = true;
   if (m.mirror_axis >= 0) m.close_region_under_mirror(region);
   m.scope_vertices.clear();
+  m.mask = mesh::find_mask(m.mesh);
   for (Vertex v : region)
-    if (!m.mesh.is_deleted(v) && m.scope[v] == kOutside) {
+    if (!m.mesh.is_deleted(v) && m.scope[v] == kOutside && !m.masked(v)) {
       m.scope[v] = kActive;
       m.scope_vertices.push_back(v);
     }

@@ -11,6 +11,7 @@
 #include "geometry/aabb_tree.h"
 #include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
+#include "mesh/vertex_mask.h"
 #include "remesh/remesher.h"
 
 namespace adasculpt::remesh {
@@ -145,6 +146,13 @@ struct Remesher::Impl : RemeshScratch {
   VertexProperty<std::uint32_t> ref_hint;  // last reference triangle a vertex projected to
   VertexProperty<std::uint32_t> segment_hint;  // last reference feature segment (feature vertices)
   EdgeProperty<std::uint8_t> feature;      // feature or boundary edge
+  // The sculpting mask (mesh/vertex_mask.h), looked up again by every call (a mask operation may
+  // add it between calls): fully masked vertices stay outside every scope, so no pass moves them
+  // or changes their triangles, and their neighbours hold the border as a region's border does.
+  VertexProperty<float> mask;
+  bool masked(Vertex v) const { return mesh::fully_masked(mask, v); }
+  // Whole-mesh passes: the unmasked neighbours of masked vertices become held (the region border).
+  void hold_around_masked();
 
   // Scratch buffers, reused so iterations do not allocate once warmed up (and those of
   // RemeshScratch outlive the remesher).
@@ -230,6 +238,12 @@ struct Remesher::Impl : RemeshScratch {
     return scope[mesh.vertex(e, 0)] != kOutside && scope[mesh.vertex(e, 1)] != kOutside;
   }
   bool movable(Vertex v) const { return scope[v] == kActive && vclass[v] != kCorner; }
+  // A flip of e changes the triangles of all four corners of its quad: none may be masked (the
+  // sliver fix checks only e's ends otherwise, and flips next to a region's outside vertices).
+  bool flip_spares_masked(Edge e) const {
+    const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+    return !masked(mesh.to_vertex(mesh.next(h))) && !masked(mesh.to_vertex(mesh.next(o)));
+  }
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;
   bool collapse_topology_ok(Halfedge h) const;

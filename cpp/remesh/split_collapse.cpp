@@ -59,7 +59,8 @@ double key_ratio(std::uint64_t key) {
 // classification walk, iterate_region).
 void Remesher::Impl::gather_all_edges() {
   scope_edges.clear();
-  for (Edge e : mesh.edges()) scope_edges.push_back(e);
+  for (Edge e : mesh.edges())
+    if (in_scope(e)) scope_edges.push_back(e);  // all but those at masked vertices
 }
 
 Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
@@ -69,6 +70,7 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
   const std::uint32_t hint = ref_hint[a];
   const std::uint32_t seg_hint = segment_hint[vclass[a] != kFree ? a : b];
   Vertex v = mesh.split(e, p);
+  if (mask.is_valid()) mask[v] = 0.5f * (mask[a] + mask[b]);  // partly masked ends (full ones are never split)
   // The old edge now runs a -> v; the new edge v -> b inherits its feature flag.
   Halfedge vb = mesh.find_halfedge(v, b);
   feature[mesh.edge(vb)] = was_feature;
@@ -313,6 +315,10 @@ void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
   // The mesh keeps the edges of prev(h) and next(opposite(h)); carry feature flags over
   // from the edges that disappear with the two triangles.
   Halfedge o = mesh.opposite(h);
+  if (mask.is_valid()) {  // the survivor keeps the stronger mask of the two (neither is full)
+    const Vertex a = mesh.from_vertex(h), b = mesh.to_vertex(h);
+    mask[b] = std::max(mask[a], mask[b]);
+  }
   if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
   if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
   mesh.collapse(h);

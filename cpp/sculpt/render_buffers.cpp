@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh/vertex_mask.h"
+
 namespace adasculpt::sculpt {
 
 using mesh::Face;
@@ -58,6 +60,7 @@ bool RenderBuffers::reserve(size_t vertex_slots, size_t face_slots) {
     size_t cap = grown(vertex_capacity(), vertex_slots);
     positions_.resize(3 * cap, 0.0f);
     normals_.resize(3 * cap, 0.0f);
+    masks_.resize(cap, 0.0f);
     stamp_.resize(cap, 0);
     realloc = true;
   }
@@ -80,6 +83,7 @@ void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
   out[0] = float(p.x);
   out[1] = float(p.y);
   out[2] = float(p.z);
+  masks_[v.idx] = mask_.is_valid() ? mask_[v] : 0.0f;
 }
 
 // Area-weighted average of the incident face normals: the sum of the corner cross products.
@@ -132,6 +136,7 @@ bool RenderBuffers::write_face(const SurfaceMesh& m, Face f) {
 }
 
 const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
+  mask_ = mesh::find_mask(m);
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
   const std::uint32_t nf = std::uint32_t(m.faces_size());
   last_ = RenderChanges{};
@@ -141,6 +146,7 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
     if (m.is_deleted(v)) {
       std::fill_n(&positions_[3 * size_t(i)], 3, 0.0f);
       std::fill_n(&normals_[3 * size_t(i)], 3, 0.0f);
+      masks_[i] = 0.0f;
     } else {
       write_position(m, v);
       write_normal(m, v);
@@ -158,6 +164,7 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
 
 const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* touched, size_t n_touched,
                                            bool topology_changed, bool everything) {
+  mask_ = mesh::find_mask(m);
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
   const std::uint32_t nf = std::uint32_t(m.faces_size());
   if (everything || positions_.empty()) return rebuild(m);

@@ -67,6 +67,9 @@ class RenderBuffers {
   const float* positions() const { return positions_.data(); }  // xyz per vertex slot
   const float* normals() const { return normals_.data(); }      // xyz per vertex slot, unit length
   const std::uint32_t* indices() const { return indices_.data(); }  // 3 per face slot
+  // The mask (mesh/vertex_mask.h) per vertex slot, 0 without one: written with the positions, so
+  // a mask operation that reports its changed vertices as touched updates it incrementally.
+  const float* masks() const { return masks_.data(); }
   std::uint32_t vertex_count() const { return vertex_count_; }
   std::uint32_t face_count() const { return face_count_; }
   size_t vertex_capacity() const { return positions_.size() / 3; }
@@ -79,7 +82,8 @@ class RenderBuffers {
   void write_normal(const mesh::SurfaceMesh& m, mesh::Vertex v);
   bool write_face(const mesh::SurfaceMesh& m, mesh::Face f);  // true when the stored triple changed
 
-  std::vector<float> positions_, normals_;
+  std::vector<float> positions_, normals_, masks_;
+  mesh::VertexProperty<float> mask_;  // the mesh's, looked up by each rebuild() / update()
   std::vector<std::uint32_t> indices_;
   std::uint32_t vertex_count_ = 0, face_count_ = 0;
   // Deduplication of the normal refresh list without clearing a per-vertex array each frame.

@@ -18,6 +18,7 @@
 #include "io/load_mesh.h"
 #include "mesh/flat_walk.h"
 #include "mesh/build_from_triangles.h"
+#include "mesh/vertex_mask.h"
 #include "remesh/remesher.h"
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
@@ -83,6 +84,22 @@ struct Session::Impl {
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
+  MaskPainter mask_painter;
+  bool masking = false;  // a mask stroke runs (mask_begin .. mask_end)
+
+  // A mask operation starts: ends whatever runs, gives the mesh its mask on first use, opens the
+  // step (recorded by commit_step, or by end_grab for a stroke).
+  void start_mask_step() {
+    require_mesh("mask");
+    end_grab();
+    if (!mesh::find_mask(mesh).is_valid()) {
+      mesh.add_vertex_property<float>(mesh::kMaskProperty, 0.0f);
+      history.adopt_new_arrays(mesh);  // all zero on both sides: the step logs the change
+      journal.stop();  // a change record cannot add an array: the next save is a full state
+    }
+    push_undo();
+    last = FrameTimings{};
+  }
 
   mutable geometry::TriangleTree tree;  // of the current surface, built on demand
   mutable bool tree_valid = false;
@@ -205,7 +222,7 @@ struct Session::Impl {
   }
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
-    if (!grabbing && !brushing) return;
+    if (!grabbing && !brushing && !masking) return;
     if (grabbing) grab.end();
     if (brushing && options.feature_angle_deg == 0) {
       remesher->disable_mirror();
@@ -214,16 +231,17 @@ struct Session::Impl {
       move_step_touched();
       remesher->end_region_sequence(step_touched);
       remesher_kept = true;
-    } else {
+    } else if (grabbing || brushing) {
       drop_remesher();
-    }
-    grabbing = brushing = false;
+    }  // (a mask stroke changes no geometry: a kept remesher and the surface tree stay valid)
+    const bool geometry_changed = grabbing || brushing;
+    grabbing = brushing = masking = false;
     // The step is recorded from the slots around what it touched (no pass over the mesh). The
     // mesh is not compacted here: the history refers to slots, and deleted slots stay until a
     // whole-mesh step (load, restore, remesh) starts the numbering over. Every reader skips them
     // (the render buffers draw them as empty triangles).
     commit_step();
-    tree_valid = false;
+    if (geometry_changed) tree_valid = false;
   }
   bool step_history(bool back) {
     end_grab();
@@ -418,6 +436,52 @@ void Session::brush_stroke(const BrushStroke& stroke) {
   brush_end();
 }
 
+void Session::mask(const MaskOp& op) {
+  Impl& s = *impl_;
+  check_mask_op(op);
+  if (mask_op_has_path(op.kind)) {
+    mask_begin(op);
+    for (const Point& p : op.path) mask_stamp(p);
+    mask_end();
+    return;
+  }
+  s.start_mask_step();
+  s.mask_painter.apply_whole(s.mesh, op.kind, s.changes.touched_vertices);
+  s.commit_step();
+}
+
+void Session::mask_begin(const MaskOp& op) {
+  Impl& s = *impl_;
+  check_mask_op(op, true);
+  s.start_mask_step();
+  s.mask_painter.begin_path(op);
+  s.masking = true;
+}
+
+void Session::mask_stamp(const Point& p) {
+  Impl& s = *impl_;
+  if (!s.masking) throw std::logic_error("mask_stamp: no mask stroke in progress (call mask_begin first)");
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    throw std::invalid_argument("mask: 'path' must hold finite points");
+  const geometry::TriangleTree& tree = s.surface_tree();
+  auto locate = [&](const Point& q) {
+    if (tree.empty()) return mesh::Vertex();
+    const geometry::TriangleTree::ClosestHit hit = tree.closest_point(q);
+    mesh::Vertex corners[3];
+    s.mesh.face_vertices(tree.face_of(hit.triangle), corners);
+    return deform::walk_to_nearest_vertex(s.mesh, corners[0], q);
+  };
+  s.mask_painter.add_point(s.mesh, p, locate, s.changes.touched_vertices);
+}
+
+void Session::mask_end() { impl_->end_grab(); }
+bool Session::masking() const { return impl_->masking; }
+
+float Session::mask_value(mesh::Vertex v) const {
+  const mesh::VertexProperty<float> m = mesh::find_mask(impl_->mesh);
+  return m.is_valid() && v.idx < impl_->mesh.vertices_size() ? m[v] : 0.0f;
+}
+
 void Session::remesh(int iterations, double detail) {
   Impl& s = *impl_;
   s.require_mesh("remesh");
@@ -446,8 +510,12 @@ void Session::remesh(int iterations, double detail) {
 bool Session::undo() { return impl_->step_history(true); }
 bool Session::redo() { return impl_->step_history(false); }
 
-bool Session::can_undo() const { return impl_->history.undo_steps() > 0 || impl_->grabbing || impl_->brushing; }
-bool Session::can_redo() const { return impl_->history.redo_steps() > 0 && !impl_->grabbing && !impl_->brushing; }
+bool Session::can_undo() const {
+  return impl_->history.undo_steps() > 0 || impl_->grabbing || impl_->brushing || impl_->masking;
+}
+bool Session::can_redo() const {
+  return impl_->history.redo_steps() > 0 && !impl_->grabbing && !impl_->brushing && !impl_->masking;
+}
 
 nlohmann::json Session::replay(const nlohmann::json& session_file) {
   Impl& s = *impl_;
@@ -494,6 +562,9 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
       case SessionStep::Kind::Remesh:
         remesh(step.count, step.detail);
         break;
+      case SessionStep::Kind::Mask:
+        mask(step.mask);
+        break;
       case SessionStep::Kind::Undo:
         for (int i = 0; i < step.count; ++i) undo();
         break;
@@ -529,7 +600,7 @@ const std::string& Session::remesh_warning() const { return impl_->remesh_warnin
 const ChangeSet& Session::changes() const { return impl_->changes; }
 void Session::clear_changes() {
   Impl& s = *impl_;
-  if (s.grabbing || s.brushing) s.move_step_touched();  // the step in progress still needs them when it ends
+  if (s.grabbing || s.brushing || s.masking) s.move_step_touched();  // the step in progress still needs them when it ends
   impl_->changes.topology_changed = false;
   impl_->changes.everything = false;
   impl_->changes.touched_vertices.clear();
@@ -562,7 +633,7 @@ std::uint64_t new_chain_id() {
 std::vector<uint8_t> Session::save_state(size_t max_history_bytes) {
   Impl& s = *impl_;
   s.require_mesh("save state");
-  if (s.grabbing || s.brushing) throw std::logic_error("save state: a grab or a stroke is in progress");
+  if (s.grabbing || s.brushing || s.masking) throw std::logic_error("save state: a grab or a stroke is in progress");
   const std::uint64_t chain = new_chain_id();
   size_t n_undo = 0, n_redo = 0;
   std::vector<uint8_t> out =
@@ -574,7 +645,7 @@ std::vector<uint8_t> Session::save_state(size_t max_history_bytes) {
 std::optional<std::vector<uint8_t>> Session::save_changes() {
   Impl& s = *impl_;
   s.require_mesh("save changes");
-  if (s.grabbing || s.brushing) throw std::logic_error("save changes: a grab or a stroke is in progress");
+  if (s.grabbing || s.brushing || s.masking) throw std::logic_error("save changes: a grab or a stroke is in progress");
   return s.journal.take(s.state_settings());
 }
 

@@ -9,6 +9,7 @@
 // whole remesh keeps the mesh before it. Undo and redo are exact to the slot: positions,
 // connectivity, deleted slots and numbering come back bit for bit. The history is bounded
 // (kMaxUndoSteps steps and kMaxUndoBytes bytes; the oldest steps are dropped first).
+// A mask operation (mask()) is a step too.
 //
 // The mesh may contain deleted slots, and readers must skip them (mesh().is_deleted(...)): grabs
 // and strokes never compact it, since the history refers to slots (load, restore_state and a
@@ -28,6 +29,7 @@
 #include "io/mesh_io.h"
 #include "mesh/surface_mesh.h"
 #include "sculpt/brush.h"
+#include "sculpt/mask.h"
 
 namespace adasculpt::sculpt {
 
@@ -110,6 +112,22 @@ class Session {
   bool brushing() const;
   // begin, one stamp call per path point, end: one undo step.
   void brush_stroke(const BrushStroke& stroke);
+
+  // A mask operation (sculpt/mask.h): one undo step. Ends a running grab or stroke; throws
+  // std::invalid_argument on a bad operation or without a mesh. The first one gives the mesh its
+  // mask (mesh/vertex_mask.h), which then follows every edit, undo, redo and the saved state.
+  // Fully masked vertices never move under a brush or a grab, and no remeshing touches their
+  // triangles; partly masked ones move by (1 - mask) of what they would.
+  void mask(const MaskOp& op);
+  // A paint or erase stroke as the pointer moves, one undo step: mask_begin (op.path not read),
+  // one mask_stamp per pointer sample (a surface point), mask_end. mask(op) with a path does the
+  // same in one call. Grabs, brush strokes, undo and redo end a running mask stroke first.
+  void mask_begin(const MaskOp& op);
+  void mask_stamp(const Point& p);
+  void mask_end();
+  bool masking() const;
+  // The mask value of every vertex slot (0 for all without a mask).
+  float mask_value(mesh::Vertex v) const;
 
   // Whole-mesh adaptive remeshing with projection onto the current surface; one undo step.
   // detail > 0: every edge towards that absolute length instead of the settings (the detail flood

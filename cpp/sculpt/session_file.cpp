@@ -102,13 +102,26 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
 }
 const char* const kAxes[] = {"x", "y", "z"};
 
+std::vector<Point> parse_path(const json& j, const std::string& ctx) {
+  if (!j.contains("path")) fail(ctx, "path", "is missing");
+  const json& path = j["path"];
+  if (!path.is_array() || path.empty()) fail(ctx, "path", "must be a non-empty array of [x,y,z] points");
+  std::vector<Point> out;
+  for (size_t i = 0; i < path.size(); ++i) out.push_back(vec3(path[i], ctx, "path[" + std::to_string(i) + "]"));
+  return out;
+}
+
+json path_json(const std::vector<Point>& path) {
+  json out = json::array();
+  for (const Point& p : path) out.push_back({p.x, p.y, p.z});
+  return out;
+}
+
 BrushStroke parse_brush(const json& b, const std::string& ctx) {
   BrushStroke s;
   s.settings = parse_brush_settings(b, ctx, {"path", "pressure"});
-  if (!b.contains("path")) fail(ctx, "path", "is missing");
+  s.path = parse_path(b, ctx);
   const json& path = b["path"];
-  if (!path.is_array() || path.empty()) fail(ctx, "path", "must be a non-empty array of [x,y,z] points");
-  for (size_t i = 0; i < path.size(); ++i) s.path.push_back(vec3(path[i], ctx, "path[" + std::to_string(i) + "]"));
   if (b.contains("pressure")) {
     const json& v = b["pressure"];
     if (!v.is_array() || v.size() != path.size()) fail(ctx, "pressure", "must be an array with one number per path point");
@@ -170,6 +183,44 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
   return st;
 }
 
+MaskOp parse_mask_op(const json& m, const std::string& ctx, bool stroke) {
+  if (!m.is_object()) throw std::invalid_argument(ctx + "must be an object");
+  if (!m.contains("op")) fail(ctx, "op", "is missing");
+  const auto kind = m["op"].is_string() ? parse_mask_op_kind(m["op"].get<std::string>()) : std::nullopt;
+  if (!kind) fail(ctx, "op", std::string("must be one of ") + mask_op_list());
+  MaskOp op;
+  op.kind = *kind;
+  if (stroke && !mask_op_has_path(op.kind)) fail(ctx, "op", "must be paint or erase for a stroke");
+  if (!mask_op_has_path(op.kind)) {
+    check_keys(m, ctx, {"op"});
+    return op;
+  }
+  if (stroke) {
+    check_keys(m, ctx, {"op", "radius", "strength"});
+  } else {
+    check_keys(m, ctx, {"op", "path", "radius", "strength"});
+    op.path = parse_path(m, ctx);
+  }
+  if (!m.contains("radius")) fail(ctx, "radius", "is missing");
+  op.radius = positive_number(m["radius"], ctx, "radius");
+  if (m.contains("strength")) {
+    const json& v = m["strength"];
+    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail(ctx, "strength", "must be a number between 0 and 1");
+    op.strength = v.get<double>();
+  }
+  return op;
+}
+
+json to_json(const MaskOp& op) {
+  json j = {{"op", mask_op_name(op.kind)}};
+  if (mask_op_has_path(op.kind)) {
+    j["path"] = path_json(op.path);
+    j["radius"] = op.radius;
+    j["strength"] = op.strength;
+  }
+  return j;
+}
+
 SettingsPatch parse_settings(const json& s, const std::string& ctx) {
   if (!s.is_object()) throw std::invalid_argument(ctx + "must be an object");
   check_keys(s, ctx, {"epsilon", "min_length", "max_length", "features"});
@@ -226,7 +277,7 @@ SessionFile parse_session_file(const json& j) {
     ++i;
     const std::string at = "step " + std::to_string(i);
     if (!s.is_object() || s.size() != 1)
-      throw std::invalid_argument(at + ": must be an object with one key: grab, brush, remesh, undo or redo");
+      throw std::invalid_argument(at + ": must be an object with one key: grab, brush, remesh, mask, undo or redo");
     const std::string kind = s.begin().key();
     const json& v = s.begin().value();
     const std::string ctx = at + " (" + kind + "): ";
@@ -244,11 +295,14 @@ SessionFile parse_session_file(const json& j) {
       if (!v.contains("iterations")) fail(ctx, "iterations", "is missing");
       step.count = positive_int(v["iterations"], ctx, "iterations");
       if (v.contains("detail")) step.detail = positive_number(v["detail"], ctx, "detail", true);
+    } else if (kind == "mask") {
+      step.kind = SessionStep::Kind::Mask;
+      step.mask = parse_mask_op(v, ctx);
     } else if (kind == "undo" || kind == "redo") {
       step.kind = kind == "undo" ? SessionStep::Kind::Undo : SessionStep::Kind::Redo;
       step.count = positive_int(v, ctx, kind);
     } else {
-      throw std::invalid_argument(at + ": unknown step '" + kind + "' (expected grab, brush, remesh, undo or redo)");
+      throw std::invalid_argument(at + ": unknown step '" + kind + "' (expected grab, brush, remesh, mask, undo or redo)");
     }
     f.steps.push_back(step);
   }
@@ -284,10 +338,8 @@ json to_json(const SessionFile& f) {
       }
       case SessionStep::Kind::Brush: {
         const deform::BrushSettings& st = s.brush.settings;
-        json path = json::array();
-        for (const Point& p : s.brush.path) path.push_back({p.x, p.y, p.z});
         json brush = {{"tool", deform::brush_tool_name(st.tool)},
-                      {"path", path},
+                      {"path", path_json(s.brush.path)},
                       {"radius", st.radius},
                       {"strength", st.strength},
                       {"spacing", st.spacing},
@@ -305,6 +357,9 @@ json to_json(const SessionFile& f) {
         steps.push_back({{"remesh", remesh}});
         break;
       }
+      case SessionStep::Kind::Mask:
+        steps.push_back({{"mask", to_json(s.mask)}});
+        break;
       case SessionStep::Kind::Undo:
         steps.push_back({{"undo", s.count}});
         break;

@@ -12,6 +12,8 @@
 //                 "symmetry": "x", "spacing": f, "invert": false, "pressure": [p, ...],
 //                 "detail": L, "falloff": "sharp"}},
 //      {"remesh": {"iterations": k, "detail": L}},
+//      {"mask": {"op": "paint", "path": [[x,y,z], ...], "radius": r, "strength": s}},
+//      {"mask": {"op": "invert"}},
 //      {"undo": n}, {"redo": n}]}
 //
 // A grab picks the surface point closest to `center` and applies the total transform gradually
@@ -23,6 +25,9 @@
 // falloff to "smooth" (smooth, sphere, sharp, linear, constant: deform/brushes.h), detail to 0 (the
 // session's settings; > 0: an absolute edge length for this stroke). A remesh step's detail > 0
 // remeshes the whole mesh to that constant edge length (Session::remesh; the detail flood fill).
+//
+// A mask step's op is one of paint, erase, clear, fill, invert, blur, sharpen (sculpt/mask.h);
+// paint and erase need path and radius, strength defaults to 1.
 //
 // Every validation error is a std::invalid_argument with one line naming the step and field:
 //   "step 3 (grab): 'roi_radius' must be a positive number".
@@ -37,6 +42,7 @@
 #include "mesh/types.h"
 #include "remesh/length_spec.h"
 #include "sculpt/brush.h"
+#include "sculpt/mask.h"
 
 namespace adasculpt::sculpt {
 
@@ -71,12 +77,18 @@ struct GrabStep {
 };
 
 struct SessionStep {
-  enum class Kind { Grab, Brush, Remesh, Undo, Redo } kind = Kind::Grab;
+  enum class Kind { Grab, Brush, Remesh, Undo, Redo, Mask } kind = Kind::Grab;
   GrabStep grab;  // Kind::Grab
   int count = 1;  // remesh iterations, undo / redo count
   BrushStroke brush;  // Kind::Brush (last: {kind, grab, count} aggregate initialisers stay valid)
   double detail = 0;  // Kind::Remesh: > 0, a constant edge length instead of the settings
+  MaskOp mask;        // Kind::Mask
 };
+
+// A mask operation as in a mask step (also what the wasm module's mask() takes); checked. With
+// `stroke`, a paint or erase without its path (the wasm module's maskBegin).
+MaskOp parse_mask_op(const nlohmann::json& m, const std::string& context = "mask: ", bool stroke = false);
+nlohmann::json to_json(const MaskOp& op);
 
 struct SessionFile {
   SettingsPatch settings;

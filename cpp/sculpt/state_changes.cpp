@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mesh/vertex_mask.h"
 #include "sculpt/byte_io.h"
 
 namespace adasculpt::sculpt {
@@ -26,6 +27,10 @@ void check_mesh(const mesh::SurfaceMesh& m) {
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
       byte_io::fail("a change record: non-finite position");
   }
+  // As read_history: a mask value outside [0, 1] would let a brush push a vertex the wrong way.
+  if (const mesh::VertexProperty<float> mask = mesh::find_mask(m); mask.is_valid())
+    for (mesh::Vertex v : m.vertices())
+      if (!(mask[v] >= 0.0f && mask[v] <= 1.0f)) byte_io::fail("a change record: a mask value outside [0, 1]");
 }
 }  // namespace
 

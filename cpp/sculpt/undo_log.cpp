@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mesh/vertex_mask.h"
 #include "sculpt/byte_io.h"
 
 namespace adasculpt::sculpt {
@@ -331,6 +332,17 @@ void UndoLog::commit_whole(const SurfaceMesh& m) {
   enforce_limits();
 }
 
+void UndoLog::adopt_new_arrays(const SurfaceMesh& m) {
+  for (int k = 0; k < kKinds; ++k) {
+    const PropertyContainer& mc = container(m, k);
+    PropertyContainer& sc = container(*shadow_, k);
+    for (size_t i = 0; i < mc.n_arrays(); ++i) {
+      const BasePropertyArray* a = mc.array(i);
+      if (builtin(a->name()) && !sc.find(a->name())) sc.add_clone(*a);
+    }
+  }
+}
+
 bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole) {
   if (s.whole) {
     std::swap(m, *s.whole);
@@ -491,6 +503,13 @@ SurfaceMesh::DeletedCounts read_counts(Reader& r) {
   c.faces = size_t(r.get<std::uint64_t>());
   return c;
 }
+// Mask values outside [0, 1] (NaN included) would let a brush push a vertex the wrong way.
+void check_mask_values(const SurfaceMesh& m, const char* where) {
+  const mesh::VertexProperty<float> mask = mesh::find_mask(m);
+  if (!mask.is_valid()) return;
+  for (Vertex v : m.vertices())
+    if (!(mask[v] >= 0.0f && mask[v] <= 1.0f)) fail(std::string(where) + "a mask value outside [0, 1]");
+}
 }  // namespace
 
 void write_mesh_slots(const SurfaceMesh& m, std::vector<std::uint8_t>& out) {
@@ -531,6 +550,9 @@ SurfaceMesh read_mesh_slots(const std::uint8_t*& p, size_t& left) {
     c.resize(n);
     for (const auto& v : vs) {
       BasePropertyArray* a = find_array(c, v.name, v.bytes);
+      // The mask is the one logged array a mesh gets later (mesh/vertex_mask.h).
+      if (!a && k == kVertex && v.name == mesh::kMaskProperty && v.bytes == sizeof(float))
+        a = m.add_vertex_property<float>(mesh::kMaskProperty, 0.0f).array();
       if (!a) fail("unknown mesh array '" + v.name + "'");
       if (v.data.size() != size_t(n) * v.bytes) fail("mesh array '" + v.name + "' is cut");
       if (n) std::memcpy(a->raw(), v.data.data(), v.data.size());
@@ -548,6 +570,7 @@ SurfaceMesh read_mesh_slots(const std::uint8_t*& p, size_t& left) {
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) fail("non-finite position");
   }
   if (m.n_faces() == 0) fail("a mesh without faces");
+  check_mask_values(m, "");
   return m;
 }
 
@@ -626,6 +649,7 @@ void UndoLog::read_history(SurfaceMesh& m, const std::uint8_t*& p, size_t& left,
       const Point& q = work.position(v);
       if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) fail("a history step: non-finite position");
     }
+    check_mask_values(work, "a history step: ");
   };
   const size_t n_undo = trial.undo_.size(), n_redo = trial.redo_.size();
   for (size_t i = 0; i < n_undo; ++i) {

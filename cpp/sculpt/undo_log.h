@@ -49,6 +49,10 @@ class UndoLog {
   bool commit_local(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched);
   // Any change at all (a whole-mesh remesh, compaction): one step holding the mesh before it.
   void commit_whole(const mesh::SurfaceMesh& m);
+  // Between steps, after the mesh got a new logged array (the mask, mesh/vertex_mask.h): the
+  // shadow gets a copy, so the next step records that array's changes too. Steps recorded before
+  // do not hold it and leave it alone on undo.
+  void adopt_new_arrays(const mesh::SurfaceMesh& m);
 
   // Undo/redo the newest step. `touched` receives the vertices whose position or incident faces
   // changed (for the render buffers); *whole is set when the step replaced the whole mesh (then

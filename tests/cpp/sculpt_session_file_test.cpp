@@ -63,7 +63,7 @@ TEST(SculptSessionFile, ErrorsNameStepAndField) {
   EXPECT_EQ(error_of(R"({"version": 1, "steps": [{"remesh": {"iterations": 2.5}}]})"),
             "step 1 (remesh): 'iterations' must be a positive integer");
   EXPECT_EQ(error_of(R"({"version": 1, "steps": [{"smooth": 1}]})"),
-            "step 1: unknown step 'smooth' (expected grab, brush, remesh, undo or redo)");
+            "step 1: unknown step 'smooth' (expected grab, brush, remesh, mask, undo or redo)");
   EXPECT_EQ(error_of(R"({"version": 1, "steps": [{"undo": -1}]})"),
             "step 1 (undo): 'undo' must be a positive integer (at most 1000000)");
   EXPECT_EQ(error_of(R"({"version": 2, "steps": []})"), "session file: 'version' must be 1");

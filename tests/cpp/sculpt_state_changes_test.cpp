@@ -2,7 +2,8 @@
 // and pulls, undos and redos between), restore to the live session slot for slot with the same
 // undo/redo history; records cost the changed region, not the mesh; a damaged, foreign or
 // out-of-order record throws and changes nothing; a whole remesh, a load or an undo past the
-// saved history ask for a full state.
+// saved history ask for a full state, as does the mesh's first mask (a new array); mask steps after
+// it are records.
 #include <gtest/gtest.h>
 
 #include <optional>
@@ -246,4 +247,26 @@ TEST(SculptStateChanges, WholeMeshChangesAndUndoPastTheSavedHistoryNeedAFullStat
   EXPECT_THROW(s.save_changes(), std::logic_error);
   s.grab_end();
   EXPECT_TRUE(s.save_changes().has_value());
+}
+
+TEST(SculptStateChanges, MaskStepsAreRecordsOnceTheMeshHasItsMask) {
+  sculpt::Session a;
+  a.load(mesh::make_icosphere(3));
+  a.save_state();
+  sculpt::MaskOp fill;
+  fill.kind = sculpt::MaskOpKind::Fill;
+  a.mask(fill);  // the mesh gets its mask array: a record cannot add one
+  EXPECT_FALSE(a.save_changes().has_value());
+  const Bytes base = a.save_state();
+  sculpt::MaskOp invert;
+  invert.kind = sculpt::MaskOpKind::Invert;
+  a.mask(invert);
+  pull(a, Point(0, 0, 1), Vec3(0, 0, 0.2));
+  a.undo();
+  a.mask(fill);
+  const std::optional<Bytes> c = a.save_changes();
+  ASSERT_TRUE(c.has_value());
+  sculpt::Session b;
+  restore(b, base, {*c});
+  expect_same_session(a, b);
 }

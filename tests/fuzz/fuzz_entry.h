@@ -131,6 +131,11 @@ inline bool same_stroke(const sculpt::BrushStroke& a, const sculpt::BrushStroke&
   return true;
 }
 
+// Bit-for-bit the same mask operation.
+inline bool same_mask_op(const sculpt::MaskOp& a, const sculpt::MaskOp& b) {
+  return a.kind == b.kind && a.path == b.path && a.radius == b.radius && a.strength == b.strength;
+}
+
 inline Outcome run_session_file(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   sculpt::SessionFile f;
@@ -142,6 +147,13 @@ inline Outcome run_session_file(const uint8_t* data, size_t size) {
   for (const sculpt::SessionStep& s : f.steps) {
     if (s.count < 1) throw ContractViolation("step count below 1");
     if (s.kind == sculpt::SessionStep::Kind::Brush) check_brush(s.brush);
+    if (s.kind == sculpt::SessionStep::Kind::Mask) {
+      try {
+        sculpt::check_mask_op(s.mask);  // what the Session checks again before it runs one
+      } catch (const std::invalid_argument& e) {
+        throw ContractViolation(std::string("a parsed mask step fails its check: ") + e.what());
+      }
+    }
     if (s.kind != sculpt::SessionStep::Kind::Grab) continue;
     if (s.grab.substeps < 1) throw ContractViolation("grab with substeps below 1");
     for (double t : {0.0, 0.5, 1.0}) {
@@ -165,6 +177,8 @@ inline Outcome run_session_file(const uint8_t* data, size_t size) {
     if (g.steps[i].kind != f.steps[i].kind) throw ContractViolation("to_json round trip changed a step's kind");
     if (f.steps[i].kind == sculpt::SessionStep::Kind::Brush && !same_stroke(f.steps[i].brush, g.steps[i].brush))
       throw ContractViolation("to_json round trip changed brush step " + std::to_string(i + 1) + "\n" + again);
+    if (f.steps[i].kind == sculpt::SessionStep::Kind::Mask && !same_mask_op(f.steps[i].mask, g.steps[i].mask))
+      throw ContractViolation("to_json round trip changed mask step " + std::to_string(i + 1) + "\n" + again);
   }
   return Outcome::Accepted;
 }

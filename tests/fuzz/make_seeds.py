@@ -100,6 +100,25 @@ def ply_double(v, f):
 
 SESSIONS = {
     "minimal": {"version": 1, "steps": []},
+    # Every mask operation, strokes across the masked part, a remesh, undo/redo.
+    "mask": {
+        "version": 1,
+        "steps": [
+            {"mask": {"op": "fill"}},
+            {"mask": {"op": "erase", "path": [[0, 0, -1], [0, 0.3, -0.95]], "radius": 0.8, "strength": 1}},
+            {"mask": {"op": "paint", "path": [[1, 0, 0]], "radius": 0.3, "strength": 0.5}},
+            {"mask": {"op": "blur"}},
+            {"mask": {"op": "sharpen"}},
+            {"brush": {"tool": "draw", "path": [[0, -1, 0], [0, -0.9, 0.44]], "radius": 0.3, "strength": 1}},
+            {"grab": {"center": [0, -1, 0], "handle_radius": 0.1, "roi_radius": 0.8, "translate": [0, -0.4, 0.3],
+                      "substeps": 3}},
+            {"mask": {"op": "invert"}},
+            {"remesh": {"iterations": 1}},
+            {"mask": {"op": "clear"}},
+            {"undo": 3},
+            {"redo": 2},
+        ],
+    },
     "full": {
         "version": 1,
         "settings": {"epsilon": "0.05%", "min_length": 0.002, "max_length": "5%", "features": 45},

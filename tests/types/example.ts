@@ -38,6 +38,12 @@ export async function app(container: HTMLElement): Promise<void> {
   a.addEventListener('end', (e) => console.log(e.timings.medianFrameMs));
   a.setParams({ epsilon: '0.05%', brushRadius: '8%', brushStrength: 0.3, symmetry: 'off' });
   a.setTool('crease');
+  a.setTool('mask');
+  a.mask.invert();
+  a.mask.clear();
+  a.mask.stroke({ path: [[0, 0, 1]], erase: true, radius: 0.2 });
+  const masked: Float32Array = a.mask.values();
+  console.log(masked.length);
   const s = a.stats();
   const bytes: ArrayBuffer = await a.export('ply');
   const saved = await a.autosave.saved();
