@@ -15,6 +15,14 @@ constexpr char kChangeMagic[8] = {'A', 'D', 'S', 'C', 'C', 'H', 'N', 'G'};
 constexpr std::uint32_t kChangeVersion = 1;
 enum Event : std::uint8_t { kCommit = 0, kUndo = 1, kRedo = 2 };
 
+// FNV-1a over the record: a flipped byte in a position or a value would otherwise restore a valid
+// but different mesh (records are small, so this costs well under a millisecond).
+std::uint64_t checksum(const std::uint8_t* p, size_t n) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  return h;
+}
+
 // The mesh a replayed commit produced, checked as read_history checks the states it reaches.
 void check_mesh(const mesh::SurfaceMesh& m) {
   try {
@@ -97,15 +105,19 @@ std::optional<std::vector<std::uint8_t>> ChangeJournal::take(const StateSettings
   out.insert(out.end(), events_.begin(), events_.end());
   byte_io::put(out, std::uint32_t(undo_));
   byte_io::put(out, std::uint32_t(redo_));
+  byte_io::put(out, checksum(out.data(), out.size()));
   events_.clear();
   n_events_ = 0;
   return out;
 }
 
 void apply_state_change(DecodedState& state, std::uint32_t sequence, const std::uint8_t* data, size_t size) {
-  if (size < 8 || std::memcmp(data, kChangeMagic, 8) != 0) byte_io::fail("not an adasculpt change record (bad magic)");
+  if (size < 16 || std::memcmp(data, kChangeMagic, 8) != 0) byte_io::fail("not an adasculpt change record (bad magic)");
+  std::uint64_t sum;
+  std::memcpy(&sum, data + size - 8, 8);
+  if (sum != checksum(data, size - 8)) byte_io::fail("a change record is damaged (checksum)");
   const std::uint8_t* p = data + 8;
-  size_t left = size - 8;
+  size_t left = size - 16;
   byte_io::Reader r{p, left};
   const std::uint32_t version = r.get<std::uint32_t>();
   if (version != kChangeVersion) byte_io::fail("unsupported change record version " + std::to_string(version));

@@ -8,8 +8,9 @@
 //
 //   "ADSCCHNG" u32 version=1, u64 chain id (the full state's), u32 sequence (1, 2, ... after it),
 //   settings (5 f64, as in the full state), u32 event count, events, u32 undo count, u32 redo count
-//   (the reader's history after the record, checked). Event: u8 0 = commit, u32 undo steps the
-//   writer kept after it (its limits dropped the oldest), the step (UndoLog::write_newest_for_replay);
+//   (the reader's history after the record, checked), u64 FNV-1a of everything before it.
+//   Event: u8 0 = commit, u32 undo steps the writer kept after it (its limits dropped the oldest),
+//   the step (UndoLog::write_newest_for_replay);
 //   u8 1 = undo; u8 2 = redo.
 //
 // The reader holds the newest undo steps and nearest redo steps the full state kept (its byte

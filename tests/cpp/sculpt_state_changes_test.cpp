@@ -6,6 +6,7 @@
 // it are records.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -28,6 +29,14 @@ void restore(sculpt::Session& s, const Bytes& base, const std::vector<Bytes>& ch
   std::vector<sculpt::Session::ByteSpan> spans;
   for (const Bytes& c : changes) spans.push_back({c.data(), c.size()});
   s.restore_state(base.data(), base.size(), spans);
+}
+
+// A record whose checksum (its last 8 bytes, FNV-1a: state_changes.cpp) is made to match again.
+Bytes reseal(Bytes r) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i + 8 < r.size(); ++i) h = (h ^ r[i]) * 0x100000001b3ull;
+  std::memcpy(r.data() + r.size() - 8, &h, 8);
+  return r;
 }
 
 // b holds the same mesh, settings and history as a: every undo and redo state slot for slot.
@@ -190,11 +199,20 @@ TEST(SculptStateChanges, ADamagedOrStrayRecordThrowsAndChangesNothing) {
   c = live.changes;
   c[0][12] ^= 1;  // the chain id
   refused(c, "another chain");
-  // Connectivity bytes of a step: the first halfedge slot's "to" vertex of the first record,
-  // pointed far away. (The block layout: see UndoLog::write_step.)
+  // Past the checksum (resealed): the reader's own checks. The step's deletion counters, and the
+  // values of its slots (positions and connectivity) overwritten.
   c = live.changes;
-  for (size_t i = c[0].size() - 40; i < c[0].size() - 8; ++i) c[0][i] = 0xff;  // the step's counts
-  refused(c, "bad counts");
+  for (size_t i = c[0].size() - 48; i < c[0].size() - 16; ++i) c[0][i] = 0xff;
+  refused({reseal(c[0])}, "bad counts, resealed");
+  c = live.changes;
+  for (size_t i = 80; i < c[0].size() - 48; i += 5) c[0][i] = 0xff;
+  refused({reseal(c[0])}, "bad slot values, resealed");
+  // Any flipped byte of a record is found (every 7th of the first record, a pull's step).
+  for (size_t i = 0; i < live.changes[0].size(); i += 7) {
+    c = live.changes;
+    c[0][i] ^= 0x10;
+    refused(c, "a flipped byte");
+  }
   // A state of another session does not take these records.
   sculpt::Session other;
   other.load(mesh::make_icosphere(3));

@@ -113,7 +113,7 @@ test('saveChanges: a full state plus small records restores the session exactly'
 
     // Damaged, missing or out-of-order records: refused, and the session stays as it was.
     const cut = records[1].slice(0, records[1].length - 3);
-    assert.throws(() => b.restoreSaved(state, [records[0], cut, records[2]]), /saved state: truncated/);
+    assert.throws(() => b.restoreSaved(state, [records[0], cut, records[2]]), /saved state: a change record is damaged/);
     assert.ok(ply(b).equals(m0));
     assert.throws(() => b.restoreSaved(state, [records[0], records[2]]), /saved state: change record 3 where 2 belongs/);
     assert.ok(ply(b).equals(m0));
