@@ -10,9 +10,12 @@
 // idle. On the next visit the app offers to restore it (the whole state, then the records in order).
 //
 // Per key (the app's `autosave` option; the standalone page uses 'main'), in the database
-// 'adasculpt', store 'autosave': the whole state under the key, the records under [key, 1],
+// 'adasculpt', store 'autosave': the whole state under the key (its bytes in pieces beside it,
+// web/idb-chunks.js), the records under [key, 1],
 // [key, 2], ... Each record names the whole state it follows (`chain`), so records of another tab
 // (two tabs with the same key: the last whole state wins) or of an older state are never applied.
+import { deleteChunked, getChunked, putChunked } from './idb-chunks.js';
+
 export const DEBOUNCE_MS = 1000;
 export const HISTORY_BYTES = 96 * 1024 * 1024;
 // Restoring replays and checks every recorded step: past this many records a whole state is due.
@@ -49,23 +52,17 @@ const recordRange = (key) => IDBKeyRange.bound([key, 0], [key, Infinity]);
 
 // The whole state and the records that continue it: same chain, numbered 1, 2, ... without a gap.
 function readSaved(db, key) {
-  return new Promise((resolve, reject) => {
-    const tx = db.transaction(STORE, 'readonly');
-    const store = tx.objectStore(STORE);
-    const base = store.get(key);
-    const all = store.getAll(recordRange(key));
-    tx.oncomplete = () => {
-      const b = base.result;
-      if (!b) { resolve(null); return; }
-      const records = [];
-      for (const r of all.result || []) {
-        if (!b.chain || r.chain !== b.chain || r.seq !== records.length + 1) break;
-        records.push(r);
-      }
-      resolve({ base: b, records });
-    };
-    tx.onerror = () => reject(tx.error);
-    tx.onabort = () => reject(tx.error || new Error('IndexedDB transaction aborted'));
+  const store = db.transaction(STORE, 'readonly').objectStore(STORE);
+  // Asked first: requests complete in order, so the records are there when the state is.
+  const all = store.getAll(recordRange(key));
+  return getChunked(store, key).then((b) => {
+    if (!b) return null;
+    const records = [];
+    for (const r of all.result || []) {
+      if (!b.chain || r.chain !== b.chain || r.seq !== records.length + 1) break;
+      records.push(r);
+    }
+    return { base: b, records };
   });
 }
 
@@ -127,7 +124,7 @@ export function createAutosave(key, host) {
       const state = host.session.saveState(budget);
       const id = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
       const record = { ...meta(), chain: id, bytes: state.byteLength, state: state.buffer };
-      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return s.put(record, key); });
+      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return putChunked(s, key, record); });
       chain = id;
       seq = 0;
       baseBytes = state.byteLength;
@@ -271,7 +268,7 @@ export function createAutosave(key, host) {
       hidePrompt();
       clearTimeout(timer);
       chain = null;
-      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return s.delete(key); });
+      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return deleteChunked(s, key); });
       if (dirty) schedule(); // changes made while the offer was up
     },
     // Offers the saved session, if any (called once at start-up). Until it is answered nothing

@@ -9,6 +9,8 @@
 // produced them: memory growth detaches every older view.
 import * as THREE from 'three';
 
+const corner = new THREE.Vector3(); // scratch: apply() allocates nothing per frame
+
 export class MeshBuffers {
   // geometry: the BufferGeometry to keep in step; lines: also keep a wireframe index (this.lines).
   constructor(Module, geometry, { lines = false } = {}) {
@@ -19,6 +21,10 @@ export class MeshBuffers {
     this.faceCapacity = 0;
     this.vertexCount = 0;
     this.faceCount = 0;
+    // Bounds of the live slots, grown by the box of each update's written positions (ch.box) and
+    // measured again only after a rebuild (which reports all of them) or a reallocation: no pass
+    // over every vertex per stroke. Vertices moved inwards or deleted leave it a little large.
+    this.bounds = new THREE.Box3();
   }
 
   get allocated() { return this.vertexCapacity > 0; }
@@ -50,6 +56,7 @@ export class MeshBuffers {
     }
     this.vertexCount = ch.vertexCount;
     this.faceCount = ch.faceCount;
+    this.growBounds(ch, fresh);
     g.setDrawRange(0, 3 * ch.faceCount);
     if (this.lines) this.lines.setDrawRange(0, 6 * ch.faceCount);
     return fresh || ve > vb || fe > fb;
@@ -93,15 +100,29 @@ export class MeshBuffers {
     attr.needsUpdate = true;
   }
 
-  // Axis-aligned box of the first vertexCount slots (deleted slots keep their last position: the
-  // box may be a little larger than the live mesh until the core compacts it).
-  boundingBox(box = new THREE.Box3()) {
-    box.makeEmpty();
-    if (!this.allocated) return box;
+  growBounds(ch, fresh) {
+    const b = this.bounds;
+    if (ch.rebuilt) b.makeEmpty(); // the box holds every live vertex
+    if (ch.box) {
+      b.expandByPoint(corner.set(ch.box[0], ch.box[1], ch.box[2]));
+      b.expandByPoint(corner.set(ch.box[3], ch.box[4], ch.box[5]));
+    }
+    if (fresh && !ch.rebuilt) this.measureBounds(); // new arrays after an incremental update (rare)
+  }
+
+  // Axis-aligned box of the first vertexCount slots, one pass over them.
+  measureBounds() {
+    const box = this.bounds.makeEmpty();
+    if (!this.allocated) return;
     const p = this.geometry.attributes.position.array;
     const v = new THREE.Vector3();
     for (let i = 0; i < this.vertexCount; i++) box.expandByPoint(v.fromArray(p, 3 * i));
-    return box;
+  }
+
+  // Axis-aligned box of the mesh (this.bounds: it may be a little larger than the live mesh, see
+  // the constructor).
+  boundingBox(box = new THREE.Box3()) {
+    return box.copy(this.bounds);
   }
 
   // The geometry's boundingBox/boundingSphere from the live slots (three.js would measure the

@@ -506,6 +506,17 @@ class SessionHandle {
     r.set("faceEnd", c.face_end);
     r.set("vertexCount", c.vertex_count);
     r.set("faceCount", c.face_count);
+    // The box of the positions written ([minX, minY, minZ, maxX, maxY, maxZ]; null when none was)
+    // and whether they were all of them: the viewer's bounds without a pass over the vertices.
+    r.set("rebuilt", c.rebuilt);
+    if (c.box_min[0] <= c.box_max[0]) {
+      val box = val::array();
+      for (int k = 0; k < 3; ++k) box.call<void>("push", c.box_min[k]);
+      for (int k = 0; k < 3; ++k) box.call<void>("push", c.box_max[k]);
+      r.set("box", box);
+    } else {
+      r.set("box", val::null());
+    }
     r.set("vertices", double(session_.has_mesh() ? session_.mesh().n_vertices() : 0));
     r.set("faces", double(session_.has_mesh() ? session_.mesh().n_faces() : 0));
     r.set("vertexCapacity", double(buffers_.vertex_capacity()));

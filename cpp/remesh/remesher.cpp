@@ -80,6 +80,7 @@ void Remesher::set_options(const RemeshOptions& options) {
 }
 
 void Remesher::reset_reference() { impl_->reference_stale = true; }
+void Remesher::log_deleted_faces(std::vector<Face>* log) { impl_->deleted_faces_log = log; }
 
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;

@@ -112,6 +112,10 @@ class Remesher {
   // The mesh changed outside the remesher's control (e.g. deformation or a new load):
   // the reference surface is rebuilt from the current mesh on the next whole-mesh iteration.
   void reset_reference();
+  // Face slots deleted by collapses are appended to *log from now on (nullptr: not recorded).
+  // A renderer keeping one triangle per face slot learns from it which slots to empty: the
+  // deleted faces are out of the connectivity and not reachable from the vertices left.
+  void log_deleted_faces(std::vector<mesh::Face>* log);
   // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
   const RemeshOptions& options() const;

@@ -105,6 +105,7 @@ struct Remesher::Impl : RemeshScratch {
 
   SurfaceMesh& mesh;
   RemeshOptions opt;
+  std::vector<Face>* deleted_faces_log = nullptr;  // Remesher::log_deleted_faces
 
   // Reference surface: a copy of the mesh when the remesher was made (or last reset), with
   // its sizing per reference point, for projection and for the sizing of new vertices.

@@ -321,6 +321,10 @@ void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
   }
   if (!mesh.is_boundary(h)) feature[mesh.edge(mesh.prev(h))] |= feature[mesh.edge(mesh.next(h))];
   if (!mesh.is_boundary(o)) feature[mesh.edge(mesh.next(o))] |= feature[mesh.edge(mesh.prev(o))];
+  if (deleted_faces_log) {  // the two triangles on the edge go with it
+    if (!mesh.is_boundary(h)) deleted_faces_log->push_back(mesh.face(h));
+    if (!mesh.is_boundary(o)) deleted_faces_log->push_back(mesh.face(o));
+  }
   mesh.collapse(h);
 }
 

@@ -29,6 +29,16 @@ void extend(std::uint32_t& begin, std::uint32_t& end, std::uint32_t b, std::uint
 }  // namespace
 
 void RenderChanges::merge(const RenderChanges& later) {
+  if (later.rebuilt) {  // the later box covers every vertex: what this one had is out of date
+    std::copy_n(later.box_min, 3, box_min);
+    std::copy_n(later.box_max, 3, box_max);
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      box_min[k] = std::min(box_min[k], later.box_min[k]);
+      box_max[k] = std::max(box_max[k], later.box_max[k]);
+    }
+  }
+  rebuilt = rebuilt || later.rebuilt;
   reallocated = reallocated || later.reallocated;
   indices_changed = indices_changed || later.indices_changed;
   extend(vertex_begin, vertex_end, later.vertex_begin, later.vertex_end);
@@ -78,11 +88,16 @@ void RenderBuffers::mark_normal(Vertex v) {
 }
 
 void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
+  ++work_;
   const Point& p = m.position(v);
   float* out = &positions_[3 * size_t(v.idx)];
   out[0] = float(p.x);
   out[1] = float(p.y);
   out[2] = float(p.z);
+  for (int k = 0; k < 3; ++k) {
+    last_.box_min[k] = std::min(last_.box_min[k], out[k]);
+    last_.box_max[k] = std::max(last_.box_max[k], out[k]);
+  }
   masks_[v.idx] = mask_.is_valid() ? mask_[v] : 0.0f;
 }
 
@@ -90,6 +105,7 @@ void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
 // Angle weights (an atan2 per corner) cost three times as much per frame, and the remesher keeps
 // triangles well shaped, where the two agree closely.
 void RenderBuffers::write_normal(const SurfaceMesh& m, Vertex v) {
+  ++work_;
   Vec3 n(0.0);
   const Point& p = m.position(v);
   for (mesh::Halfedge h : m.halfedges(v)) {
@@ -118,6 +134,7 @@ static void current_triple(const SurfaceMesh& m, Face f, std::uint32_t t[3]) {
 }
 
 bool RenderBuffers::write_face(const SurfaceMesh& m, Face f) {
+  ++work_;
   std::uint32_t* out = &indices_[3 * size_t(f.idx)];
   std::uint32_t t[3];
   current_triple(m, f, t);
@@ -157,18 +174,22 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
   std::fill(indices_.begin() + 3 * size_t(nf), indices_.begin() + 3 * size_t(std::max(nf, face_count_)), 0u);
   vertex_count_ = nv;
   face_count_ = nf;
+  work_ = size_t(nv) + nf;
+  last_.rebuilt = true;
   last_.everything(nv, nf);
   pending_.merge(last_);
   return last_;
 }
 
 const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* touched, size_t n_touched,
-                                           bool topology_changed, bool everything) {
+                                           const Face* faces, size_t n_faces, bool topology_changed,
+                                           bool everything) {
   mask_ = mesh::find_mask(m);
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
   const std::uint32_t nf = std::uint32_t(m.faces_size());
   if (everything || positions_.empty()) return rebuild(m);
 
+  work_ = 0;
   last_ = RenderChanges{};
   last_.reallocated = reserve(nv, nf);
   if (++epoch_ == 0) {  // wrapped: forget all stamps once every 4 billion updates
@@ -180,6 +201,7 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   // Fewer slots: an undo took back the slots a step had appended (sculpt/undo_log.h). Their
   // triangles are emptied; the vertices they leave get new normals (those still in the mesh).
   if (nf < face_count_) {
+    work_ += face_count_ - nf;
     for (std::uint32_t i = nf; i < face_count_; ++i) {
       std::uint32_t* t = &indices_[3 * size_t(i)];
       for (int k = 0; k < 3; ++k)
@@ -192,9 +214,9 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   if (nv < vertex_count_) vertex_count_ = nv;
 
   // Faces: every face whose triangle changed is incident to a touched live vertex (the contract
-  // in the header), is a new slot, or was deleted. So: the faces around touched vertices, the new
-  // slots, and one byte per slot for the deletion flags; no walk over the whole connectivity.
-  const bool faces_may_change = topology_changed || nf != face_count_ || fe > fb;
+  // in the header), is a new slot, or is one of the touched faces (the deleted ones). So: the
+  // faces around touched vertices, the new slots and the touched faces; no walk over the slots.
+  const bool faces_may_change = topology_changed || nf != face_count_ || fe > fb || n_faces > 0;
   auto face = [&](Face f) {
     if (write_face(m, f)) extend(fb, fe, f.idx, f.idx + 1);
   };
@@ -215,10 +237,8 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   }
   if (faces_may_change) {
     for (std::uint32_t i = face_count_; i < nf; ++i) face(Face(i));
-    for (std::uint32_t i = 0; i < face_count_; ++i) {
-      const std::uint32_t* t = &indices_[3 * size_t(i)];
-      if ((t[0] | t[1] | t[2]) != 0 && m.is_deleted(Face(i))) face(Face(i));
-    }
+    for (size_t i = 0; i < n_faces; ++i)
+      if (faces[i].idx < face_count_) face(faces[i]);  // slots past it were just written
     last_.face_begin = fb;
     last_.face_end = fe;
     last_.indices_changed = fe > fb;

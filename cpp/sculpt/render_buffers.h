@@ -7,17 +7,20 @@
 // Capacity grows geometrically, so pointers (and typed-array views in the browser) stay valid
 // until an update reports `reallocated`. After warm-up, update() allocates nothing: it rewrites
 // the touched vertices, the normals of their one-ring, and (when the topology changed) the faces
-// around touched vertices, the new face slots and the deleted ones, and reports the dirty ranges
-// so the renderer uploads only those. Work is proportional to the touched set, plus one byte read
-// per face slot (deletion flags) in frames that changed the topology.
+// around touched vertices, the touched faces and the new face slots, and reports the dirty
+// ranges so the renderer uploads only those. Work is proportional to the change, not to the
+// mesh: no pass over the slots, not even over the deletion flags (last_work() counts it).
 //
 // Fewer slots than the last update (an undo takes back the slots its step appended) empties the
 // triangles of the face slots past the new count, also incrementally.
 //
 // Contract for incremental updates: every live face whose triangle changed has a touched live
-// vertex (the old or the new triangle's). The session's region satisfies it: the remesher only
-// edits edges with both ends in the region (a flip's old edge ends, a collapse's survivor, a
-// split's new vertex), and new vertices join the region.
+// vertex (the old or the new triangle's), and every face deleted since the last update is in
+// the touched faces (a deleted face is reachable from no vertex). The session satisfies it: the
+// remesher only edits edges with both ends in the region (a flip's old edge ends, a collapse's
+// survivor, a split's new vertex), new vertices join the region, and the collapses and undo
+// steps list the face slots they delete (ChangeSet::touched_faces).
+#include <cfloat>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -34,6 +37,12 @@ struct RenderChanges {
   std::uint32_t vertex_begin = 0, vertex_end = 0;
   std::uint32_t face_begin = 0, face_end = 0;
   std::uint32_t vertex_count = 0, face_count = 0;
+  // Axis-aligned box of every position written (empty: min > max), and whether a rebuild wrote
+  // all of them. A viewer keeps the mesh's bounds by growing them with the box (starting over
+  // after a rebuild) instead of a pass over every vertex per stroke; the bounds may then be a
+  // little larger than the mesh (vertices moved inwards or deleted), which culling tolerates.
+  bool rebuilt = false;
+  float box_min[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, box_max[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
 
   bool empty() const { return !reallocated && vertex_begin == vertex_end && face_begin == face_end; }
   // Marks all `vertices` and `faces` slots dirty (and the indices changed).
@@ -49,15 +58,21 @@ class RenderBuffers {
   // Rewrites everything from the mesh.
   const RenderChanges& rebuild(const mesh::SurfaceMesh& m);
   // Incremental update. `touched` are vertices whose positions or incident faces may have changed
-  // (may contain duplicates and deleted vertices; see the contract above); topology_changed says
-  // faces were added, removed or flipped; everything forces a rebuild. Returns this update's changes (also merged into pending()).
+  // and `faces` face slots that may have changed, the deleted ones at least (both may contain
+  // duplicates and deleted elements; see the contract above); topology_changed says faces were
+  // added, removed or flipped; everything forces a rebuild. Returns this update's changes (also
+  // merged into pending()).
   const RenderChanges& update(const mesh::SurfaceMesh& m, const mesh::Vertex* touched, size_t n_touched,
-                              bool topology_changed, bool everything);
+                              const mesh::Face* faces, size_t n_faces, bool topology_changed, bool everything);
   // The same from a sculpt::ChangeSet (a template so this header needs no Session).
   template <class ChangeSetT>
   const RenderChanges& update(const mesh::SurfaceMesh& m, const ChangeSetT& c) {
-    return update(m, c.touched_vertices.data(), c.touched_vertices.size(), c.topology_changed, c.everything);
+    return update(m, c.touched_vertices.data(), c.touched_vertices.size(), c.touched_faces.data(),
+                  c.touched_faces.size(), c.topology_changed, c.everything);
   }
+  // Vertex and face slots the last update read or wrote (positions, normals, triangles): the
+  // tests check that it follows the change, not the mesh.
+  size_t last_work() const { return work_; }
 
   // Changes accumulated since the last take_pending(): a renderer that does not read after every
   // update still uploads everything that changed.
@@ -86,6 +101,7 @@ class RenderBuffers {
   mesh::VertexProperty<float> mask_;  // the mesh's, looked up by each rebuild() / update()
   std::vector<std::uint32_t> indices_;
   std::uint32_t vertex_count_ = 0, face_count_ = 0;
+  size_t work_ = 0;
   // Deduplication of the normal refresh list without clearing a per-vertex array each frame.
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;

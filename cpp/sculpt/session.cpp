@@ -108,6 +108,13 @@ struct Session::Impl {
   std::string remesh_warning;  // of the last whole-mesh remesh(); empty when it was within its budget
   ChangeSet changes;
 
+  // A grab's or a stroke's remesher; its collapses report the face slots they delete, which no
+  // vertex reaches any more, to the render buffers through changes.touched_faces.
+  void make_remesher() {
+    remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
+    remesher = std::make_unique<remesh::Remesher>(mesh, options);
+    remesher->log_deleted_faces(&changes.touched_faces);
+  }
   void drop_remesher() {
     remesher.reset();
     remesher_kept = false;
@@ -163,7 +170,7 @@ struct Session::Impl {
     if (options.feature_angle_deg == 0 && options.epsilon > 0) {
       // The strokes' remesher, made with the mesh (its arrays on a 1.1M-triangle mesh are a
       // per-mesh cost: made in the first stroke they took a few hundred milliseconds of it).
-      remesher = std::make_unique<remesh::Remesher>(mesh, options);
+      make_remesher();
       remesher_kept = true;
     }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
@@ -171,6 +178,7 @@ struct Session::Impl {
     changes.everything = true;
     changes.topology_changed = true;
     changes.touched_vertices.clear();
+    changes.touched_faces.clear();
   }
   const geometry::TriangleTree& surface_tree() const {
     if (!tree_valid) {
@@ -247,7 +255,8 @@ struct Session::Impl {
     end_grab();
     std::vector<mesh::Vertex> touched;
     bool whole = false;
-    const bool done = back ? history.undo(mesh, &touched, &whole) : history.redo(mesh, &touched, &whole);
+    const bool done = back ? history.undo(mesh, &touched, &whole, &changes.touched_faces)
+                           : history.redo(mesh, &touched, &whole, &changes.touched_faces);
     if (!done) return false;
     if (back)
       journal.undo();
@@ -361,8 +370,7 @@ void Session::grab_begin(const Point& center, double handle_radius, double roi_r
   }
   s.push_undo();
   s.grab.begin(s.mesh, picked, picked_face, handle_radius, roi_radius);
-  s.remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
-  s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+  s.make_remesher();
   s.grabbing = true;
 }
 
@@ -386,8 +394,7 @@ void Session::brush_begin(const deform::BrushSettings& settings) {
   s.brush.begin(settings);
   s.push_undo();
   if (!s.remesher_kept) {
-    s.remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
-    s.remesher = std::make_unique<remesh::Remesher>(s.mesh, s.options);
+    s.make_remesher();
   }
   s.remesher_kept = false;
   s.brushing = true;
@@ -604,6 +611,7 @@ void Session::clear_changes() {
   impl_->changes.topology_changed = false;
   impl_->changes.everything = false;
   impl_->changes.touched_vertices.clear();
+  impl_->changes.touched_faces.clear();
   s.step_touched_from = 0;
 }
 

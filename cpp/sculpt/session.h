@@ -47,11 +47,16 @@ struct FrameTimings {
 // What changed since the last clear_changes(). topology_changed: faces or vertices were added or
 // removed (renderers must re-read indices); everything: re-read the whole mesh (load, undo,
 // redo, whole remesh). touched_vertices: vertices whose positions may have changed (no duplicates
-// guaranteed only per frame; may contain vertices deleted since).
+// guaranteed only per frame; may contain vertices deleted since). touched_faces: face slots
+// deleted by the remesher's collapses, or rewritten by an undo/redo, since then (duplicates
+// possible). Together with the faces around the touched vertices and the slots appended, they
+// are every face slot whose triangle may have changed, so a renderer keeping one triangle per
+// slot updates in proportion to the change (sculpt/render_buffers.h).
 struct ChangeSet {
   bool topology_changed = false;
   bool everything = false;
   std::vector<mesh::Vertex> touched_vertices;
+  std::vector<mesh::Face> touched_faces;
 };
 
 class Session {

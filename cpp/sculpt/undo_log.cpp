@@ -343,7 +343,8 @@ void UndoLog::adopt_new_arrays(const SurfaceMesh& m) {
   }
 }
 
-bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole) {
+bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole,
+                        std::vector<mesh::Face>* faces) {
   if (s.whole) {
     std::swap(m, *s.whole);
     *shadow_ = m;
@@ -406,6 +407,10 @@ bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, b
   shadow_->set_deleted_counts(m.deleted_counts());
   if (verify_) check_shadow(m);
 
+  if (faces) {
+    for (int part = 0; part < 2; ++part)
+      for (std::uint32_t i : part ? regrown[kFace] : s.blocks[kFace].slots) faces->push_back(mesh::Face(i));
+  }
   if (touched) {
     auto add = [&](Vertex v) {
       if (v.is_valid() && v.idx < m.vertices_size() && !m.is_deleted(v)) touched->push_back(v);
@@ -424,12 +429,12 @@ bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, b
   return true;
 }
 
-bool UndoLog::undo(SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole) {
+bool UndoLog::undo(SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole, std::vector<mesh::Face>* faces) {
   if (undo_.empty()) return false;
   Step& s = *undo_.back();
   undo_bytes_ -= s.bytes();
   try {
-    swap_step(s, m, touched, whole);
+    swap_step(s, m, touched, whole, faces);
   } catch (...) {
     undo_bytes_ += s.bytes();
     throw;
@@ -439,9 +444,9 @@ bool UndoLog::undo(SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole) {
   return true;
 }
 
-bool UndoLog::redo(SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole) {
+bool UndoLog::redo(SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole, std::vector<mesh::Face>* faces) {
   if (redo_.empty()) return false;
-  swap_step(*redo_.back(), m, touched, whole);
+  swap_step(*redo_.back(), m, touched, whole, faces);
   undo_bytes_ += redo_.back()->bytes();
   undo_.push_back(std::move(redo_.back()));
   redo_.pop_back();

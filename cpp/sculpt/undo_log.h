@@ -55,10 +55,14 @@ class UndoLog {
   void adopt_new_arrays(const mesh::SurfaceMesh& m);
 
   // Undo/redo the newest step. `touched` receives the vertices whose position or incident faces
-  // changed (for the render buffers); *whole is set when the step replaced the whole mesh (then
-  // readers must start over). False when there is no step.
-  bool undo(mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole);
-  bool redo(mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole);
+  // changed and `faces` (when given) the face slots the step rewrote or brought back, deleted
+  // ones included (for the render buffers: a face the step deletes again is reachable from no
+  // vertex); *whole is set when the step replaced the whole mesh (then readers must start over).
+  // False when there is no step.
+  bool undo(mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole,
+            std::vector<mesh::Face>* faces = nullptr);
+  bool redo(mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole,
+            std::vector<mesh::Face>* faces = nullptr);
 
   size_t undo_steps() const { return undo_.size(); }
   size_t redo_steps() const { return redo_.size(); }
@@ -99,7 +103,8 @@ class UndoLog {
 
  private:
   static std::unique_ptr<Step> read_step(const std::uint8_t*& p, size_t& left);
-  bool swap_step(Step& s, mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole);
+  bool swap_step(Step& s, mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole,
+                 std::vector<mesh::Face>* faces);
   void sync_arrays(mesh::SurfaceMesh& m);
   void enforce_limits();
   void check_shadow(const mesh::SurfaceMesh& m) const;

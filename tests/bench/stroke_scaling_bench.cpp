@@ -6,7 +6,8 @@
 // The detail settings are the app's defaults (fractions of the diagonal), which a stroke applies to
 // the object under it, so the scenes differ only in how much mesh lies outside the brush.
 // The first stroke of a process also sizes the remesher's per-slot scratch arrays (a one-time
-// cost, reported apart as first_stroke_ms).
+// cost, reported apart as first_stroke_ms). Every pointer sample, undo and redo is followed by
+// the viewer's render-buffer update (sculpt/render_buffers.h), as in the app.
 //   build/native/adasculpt_bench --benchmark_filter=StrokeScaling
 // scripts/undo-scaling-doc.sh turns the output into docs/undo-and-scaling.md.
 #include <benchmark/benchmark.h>
@@ -25,6 +26,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "sculpt/render_buffers.h"
 #include "sculpt/session.h"
 
 namespace {
@@ -106,6 +108,23 @@ void set_bunny_detail(sculpt::Session& s) {
   s.set_settings({{"epsilon", "0.05%"}, {"min_length", "0.2%"}, {"max_length", "5%"}});
 }
 
+// What the viewer does after each call that changes the mesh: upload the change.
+void viewer_frame(sculpt::Session& s, sculpt::RenderBuffers& rb) {
+  rb.update(s.mesh(), s.changes());
+  s.clear_changes();
+}
+
+// A stroke as the app sends it: one call per pointer sample, each followed by a viewer frame.
+void stroke_with_frames(sculpt::Session& s, sculpt::RenderBuffers& rb, const sculpt::BrushStroke& st) {
+  s.brush_begin(st.settings);
+  for (const Point& p : st.path) {
+    s.brush_stamp(p);
+    viewer_frame(s, rb);
+  }
+  s.brush_end();
+  viewer_frame(s, rb);
+}
+
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0 : v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
@@ -123,12 +142,14 @@ void BM_StrokeScaling(benchmark::State& state) {
     sculpt::Session s;
     s.load(m);
     set_bunny_detail(s);
+    sculpt::RenderBuffers rb;
+    viewer_frame(s, rb);  // the load's full upload
     const size_t loaded_bytes = s.memory_bytes();
     state.ResumeTiming();
     const auto t0 = Clock::now();
     for (size_t k = 0; k < strokes.size(); ++k) {
       const auto t = Clock::now();
-      s.brush_stroke(strokes[k]);
+      stroke_with_frames(s, rb, strokes[k]);
       stroke_ms.push_back(ms_since(t));
       (k == 0 ? first_stroke_ms : later_stroke_ms).push_back(stroke_ms.back());
     }
@@ -136,11 +157,13 @@ void BM_StrokeScaling(benchmark::State& state) {
     for (int i = 0; i < 6; ++i) {
       const auto t = Clock::now();
       s.undo();
+      viewer_frame(s, rb);
       undo_ms.push_back(ms_since(t));
     }
     for (int i = 0; i < 6; ++i) {
       const auto t = Clock::now();
       s.redo();
+      viewer_frame(s, rb);
       redo_ms.push_back(ms_since(t));
     }
     beyond.push_back(ms_since(t0));

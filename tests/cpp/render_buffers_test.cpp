@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "mesh/primitives.h"
 #include "mesh/surface_mesh.h"
 #include "sculpt/render_buffers.h"
 #include "sculpt/session.h"
+#include "render_buffers_test_util.h"
 
 #include <glm/geometric.hpp>
 
@@ -20,33 +22,28 @@ using namespace adasculpt;
 using namespace adasculpt::mesh;
 using adasculpt::sculpt::RenderBuffers;
 using adasculpt::sculpt::RenderChanges;
+using adasculpt::test::expect_matches_rebuild;
 
 namespace {
 
 // Same fields as sculpt::ChangeSet.
 struct Changes {
+  Changes() = default;
+  Changes(bool topology, bool all, std::vector<Vertex> vertices, std::vector<Face> faces = {})
+      : topology_changed(topology), everything(all), touched_vertices(std::move(vertices)),
+        touched_faces(std::move(faces)) {}
   bool topology_changed = false;
   bool everything = false;
   std::vector<Vertex> touched_vertices;
+  std::vector<Face> touched_faces;
 };
 
-// Compares the incremental buffers with a fresh rebuild: live vertices and every face slot.
-void expect_matches_rebuild(const SurfaceMesh& m, const RenderBuffers& inc, const char* where) {
-  RenderBuffers full;
-  full.rebuild(m);
-  ASSERT_EQ(inc.vertex_count(), full.vertex_count()) << where;
-  ASSERT_EQ(inc.face_count(), full.face_count()) << where;
-  for (std::uint32_t i = 0; i < m.vertices_size(); ++i) {
-    if (m.is_deleted(Vertex(i))) continue;
-    for (int k = 0; k < 3; ++k) {
-      ASSERT_EQ(inc.positions()[3 * i + k], full.positions()[3 * i + k]) << where << " vertex " << i;
-      // Circulation may start at another halfedge after an edit: same sum, other rounding.
-      ASSERT_NEAR(inc.normals()[3 * i + k], full.normals()[3 * i + k], 1e-5) << where << " normal " << i;
-    }
-  }
-  for (std::uint32_t i = 0; i < 3 * m.faces_size(); ++i) {
-    ASSERT_EQ(inc.indices()[i], full.indices()[i]) << where << " index slot " << i;
-  }
+// The faces a collapse of h deletes (what the remesher logs in ChangeSet::touched_faces).
+std::vector<Face> faces_of_edge(const SurfaceMesh& m, Halfedge h) {
+  std::vector<Face> out;
+  for (Halfedge g : {h, m.opposite(h)})
+    if (!m.is_boundary(g)) out.push_back(m.face(g));
+  return out;
 }
 
 bool in_range(std::uint32_t i, std::uint32_t b, std::uint32_t e) { return b <= i && i < e; }
@@ -143,9 +140,10 @@ TEST(RenderBuffers, SplitFlipCollapseWithGarbageMatchRebuild) {
     }
   ASSERT_TRUE(h.is_valid());
   Vertex gone = m.from_vertex(h), survivor = m.to_vertex(h);
+  const std::vector<Face> deleted = faces_of_edge(m, h);
   m.collapse(h);
   EXPECT_TRUE(m.is_deleted(gone));
-  rb.update(m, Changes{true, false, {gone, survivor}});
+  rb.update(m, Changes{true, false, {gone, survivor}, deleted});
   expect_matches_rebuild(m, rb, "after collapse");
   size_t zero_faces = 0;
   for (std::uint32_t f = 0; f < m.faces_size(); ++f) {
@@ -201,6 +199,7 @@ TEST(RenderBuffers, RandomEditsAlwaysMatchRebuildAndRangesCoverChanges) {
       Halfedge h(rng() % m.halfedges_size());
       if (m.is_deleted(h) || !m.is_collapse_ok(h)) continue;
       ch.touched_vertices = {m.from_vertex(h), m.to_vertex(h)};
+      ch.touched_faces = faces_of_edge(m, h);
       m.collapse(h);
       ch.topology_changed = true;
     }

@@ -49,6 +49,9 @@ test('load from bytes and from arrays; render buffers match the mesh', { skip },
     assert.strictEqual(ch.vertexCount, 2562);
     assert.strictEqual(ch.faceCount, 5120);
     assert.ok(ch.reallocated && ch.indicesChanged);
+    // The load rebuilt the buffers: its box is the unit sphere's (the viewer's bounds start over).
+    assert.strictEqual(ch.rebuilt, true);
+    assert.ok(ch.box.every((x, k) => Math.abs(Math.abs(x) - 1) < 1e-6), `box ${ch.box}`);
     const pos = s.positions(), nrm = s.normals(), idx = s.indices();
     assert.strictEqual(pos.length, 3 * 2562);
     assert.strictEqual(idx.length, 3 * 5120);
@@ -128,6 +131,9 @@ test('remesh, grab/drag/end, undo and redo restore exact states', { skip }, () =
     let ch;
     for (let i = 1; i <= 8; i++) ch = s.grabDrag(0, 0, 0.06 * i, 1, 0, 0, 2 * i, 1 + 0.01 * i);
     assert.ok(ch.vertexEnd > ch.vertexBegin, 'a drag frame reports dirty vertices');
+    // Incremental: the box of the positions the frame wrote, around the pulled top only.
+    assert.strictEqual(ch.rebuilt, false);
+    assert.ok(ch.box[5] > 1.3 && ch.box[2] > 0, `drag box ${ch.box}`);
     assert.ok(ch.timings.total > 0, 'frame timings are reported');
     assert.ok(ch.vertices > 0 && ch.faces > 0);
     s.grabEnd();
