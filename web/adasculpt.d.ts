@@ -401,8 +401,12 @@ export interface AutosaveInfo {
   faces: number;
   /** `Date.now()` of the write. */
   savedAt: number;
-  /** Size of the saved state (mesh + history) in bytes. */
+  /** Size of the saved state (mesh + history) in bytes: the whole state plus its change records. */
   bytes: number;
+  /** Change records written after the whole state (each the changes of one autosave). */
+  changes: number;
+  /** Size of the newest record (the whole state's when there is none). */
+  lastBytes: number;
 }
 
 export interface Autosave {
@@ -578,8 +582,14 @@ export interface Session {
   replay(file: SessionFile): ReplayReport;
   stats(): QualityReport;
   exportMesh(format: MeshFormat): Uint8Array;
+  /** The whole state (mesh, settings, history within the budget); starts a chain of change records. */
   saveState(maxHistoryBytes: number): Uint8Array;
+  /** The changes since the last saveState/saveChanges as the chain's next small record; null when a
+   *  whole state is due (nothing saved yet, a load or whole remesh since, an undo past the saved history). */
+  saveChanges(): Uint8Array | null;
   restoreState(bytes: Uint8Array): void;
+  /** A saveState blob, then its change records in order; all or nothing (throws "saved state: ..."). */
+  restoreSaved(bytes: Uint8Array, changes: Uint8Array[]): void;
   memoryBytes(): number;
   positions(): Float32Array;
   normals(): Float32Array;

@@ -59,6 +59,7 @@ export async function createSculptApp(container, options = {}) {
   let firstRenderMs = null;
   let quality = {};
   let qualityStale = false;  // a stroke ended since `quality` was read (refreshQualityWhenIdle)
+  let endCounts = null;      // {vertices, faces} of the mesh when the last stroke ended
   let qualityTimer = null;
   const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0, dragged: false };
   const frameLog = []; // per stroke frame: core phases, buffer update, copy, render (for benchmarks)
@@ -67,10 +68,9 @@ export async function createSculptApp(container, options = {}) {
     session, toaster, root: opts.ui ? root : null,
     busy: () => sculptor.busy || session.grabbing() || session.brushing() || session.masking(),
     sourceName: () => sourceName,
-    counts: () => {
-      if (qualityStale) refreshQuality();
-      return { vertices: quality.vertices ?? 0, faces: quality.faces ?? 0 };
-    },
+    // A stroke's 'end' carries the counts: a whole-mesh quality pass here would cost an incremental
+    // write (a few ms) 100-200 ms on the dragon.
+    counts: () => (qualityStale && endCounts ? endCounts : { vertices: quality.vertices ?? 0, faces: quality.faces ?? 0 }),
     restored: (record) => {
       sourceName = record.name;
       showSource();
@@ -92,7 +92,8 @@ export async function createSculptApp(container, options = {}) {
       if (sculptor._stroke) frame.dragged = true;
     }
   });
-  sculptor.addEventListener('end', () => {
+  sculptor.addEventListener('end', (e) => {
+    endCounts = Number.isFinite(e.vertices) ? { vertices: e.vertices, faces: e.faces } : null;
     refreshQualityWhenIdle();
     autosave.changed();
   });

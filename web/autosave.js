@@ -1,16 +1,25 @@
 // Autosave: after each completed change (grab, stroke, whole remesh, undo, redo, load, settings)
-// and one second without another, the app writes its whole state to IndexedDB: the mesh (double
-// positions), the settings and the newest undo/redo steps within HISTORY_BYTES, as one lossless
-// blob from the core (Session.saveState, sculpt::Session::save_state). Never during a drag or a
-// remesh: the timer waits until the app is idle. On the next visit the app offers to restore it.
+// and one second without another, the app writes to IndexedDB. The first write is the whole state:
+// the mesh (double positions), the settings and the newest undo/redo steps within HISTORY_BYTES, as
+// one lossless blob from the core (Session.saveState). Later writes are only what changed since
+// (Session.saveChanges: the new undo steps, each the size of its brushed region, undo/redo marks
+// and the settings), one small record each, so that autosaving a stroke does not cost the mesh. A
+// fresh whole state replaces them when the core says a record cannot express the change (a load, a
+// whole remesh, an undo past the saved history), after MAX_RECORDS records, or when the records add
+// up to half the whole state. Never during a drag or a remesh: the timer waits until the app is
+// idle. On the next visit the app offers to restore it (the whole state, then the records in order).
 //
-// One record per key (the app's `autosave` option; the standalone page uses 'main'), in the
-// database 'adasculpt', store 'autosave', its state in pieces beside it (web/idb-chunks.js). Two tabs
-// with the same key share one record: the last write wins.
+// Per key (the app's `autosave` option; the standalone page uses 'main'), in the database
+// 'adasculpt', store 'autosave': the whole state under the key (its bytes in pieces beside it,
+// web/idb-chunks.js), the records under [key, 1],
+// [key, 2], ... Each record names the whole state it follows (`chain`), so records of another tab
+// (two tabs with the same key: the last whole state wins) or of an older state are never applied.
 import { deleteChunked, getChunked, putChunked } from './idb-chunks.js';
 
 export const DEBOUNCE_MS = 1000;
 export const HISTORY_BYTES = 96 * 1024 * 1024;
+// Restoring replays and checks every recorded step: past this many records a whole state is due.
+export const MAX_RECORDS = 50;
 const DB_NAME = 'adasculpt';
 const STORE = 'autosave';
 const MB = 1024 * 1024;
@@ -38,6 +47,35 @@ function run(db, mode, fn) {
   });
 }
 
+// The records of `key` (array keys sort after every string key, and by their number).
+const recordRange = (key) => IDBKeyRange.bound([key, 0], [key, Infinity]);
+
+// The whole state and the records that continue it: same chain, numbered 1, 2, ... without a gap.
+function readSaved(db, key) {
+  const store = db.transaction(STORE, 'readonly').objectStore(STORE);
+  // Asked first: requests complete in order, so the records are there when the state is.
+  const all = store.getAll(recordRange(key));
+  return getChunked(store, key).then((b) => {
+    if (!b) return null;
+    const records = [];
+    for (const r of all.result || []) {
+      if (!b.chain || r.chain !== b.chain || r.seq !== records.length + 1) break;
+      records.push(r);
+    }
+    return { base: b, records };
+  });
+}
+
+// What the prompt and saved() show: the newest record's figures, the size of all of it.
+function summary(saved) {
+  const { base, records } = saved;
+  const last = records.length ? records[records.length - 1] : base;
+  return {
+    key: base.key, name: last.name, vertices: last.vertices, faces: last.faces, savedAt: last.savedAt,
+    bytes: records.reduce((n, r) => n + r.bytes, base.bytes), changes: records.length, lastBytes: last.bytes,
+  };
+}
+
 function isQuotaError(e) {
   return !!e && (e.name === 'QuotaExceededError' || /quota/i.test(String(e.message)));
 }
@@ -53,6 +91,8 @@ export function createAutosave(key, host) {
   let prompt = null;
   let disposed = false;
   let lastError = null;
+  // The chain written last: its id (null: the next write is a whole state), records so far, sizes.
+  let chain = null, seq = 0, baseBytes = 0, recordBytes = 0;
   const db = () => (dbPromise ||= openDb());
 
   function schedule(ms = DEBOUNCE_MS) {
@@ -66,8 +106,10 @@ export function createAutosave(key, host) {
     write().catch(() => {});
   }
 
-  // The record: the core's blob plus what the prompt shows. Quota errors retry with less
-  // history, then with none; the last resort is a message (the page keeps working).
+  // A record: the core's bytes plus what the prompt shows. A change record when the core can give
+  // one and the chain is not due for a whole state; otherwise the whole state (dropping the old
+  // records in the same transaction). Quota errors retry with a whole state with less history,
+  // then with none; the last resort is a message (the page keeps working).
   async function write() {
     if (writing) await writing.catch(() => {});
     if (disposed || !dirty || offer || !host.session.hasMesh()) return false;
@@ -75,16 +117,43 @@ export function createAutosave(key, host) {
     dirty = false;
     const counts = host.counts(); // the app's cached figures (stats() would measure the whole mesh)
     const settings = host.session.settings();
+    const meta = () => ({ version: 1, key, name: host.sourceName(), savedAt: Date.now(),
+      vertices: counts.vertices, faces: counts.faces, settings });
     const attempt = async (budget) => {
+      chain = null;  // until this whole state is stored, no record may follow it
       const state = host.session.saveState(budget);
-      const record = {
-        version: 1, key, name: host.sourceName(), savedAt: Date.now(),
-        vertices: counts.vertices, faces: counts.faces, settings, bytes: state.byteLength, state: state.buffer,
-      };
-      await run(await db(), 'readwrite', (s) => putChunked(s, key, record));
+      const id = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
+      const record = { ...meta(), chain: id, bytes: state.byteLength, state: state.buffer };
+      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return putChunked(s, key, record); });
+      chain = id;
+      seq = 0;
+      baseBytes = state.byteLength;
+      recordBytes = 0;
       return record;
     };
+    // False when a whole state is due (the core then has nothing to give as a record).
+    const attemptChanges = async () => {
+      if (!chain || seq >= MAX_RECORDS || recordBytes > baseBytes / 2) return false;
+      const bytes = host.session.saveChanges();
+      if (!bytes) return false;
+      const id = chain;
+      chain = null;  // a record that is not stored breaks the chain: the next write is a whole state
+      const record = { ...meta(), chain: id, seq: seq + 1, bytes: bytes.byteLength, state: bytes.buffer };
+      await run(await db(), 'readwrite', (s) => s.put(record, [key, seq + 1]));
+      chain = id;
+      seq += 1;
+      recordBytes += bytes.byteLength;
+      return true;
+    };
     writing = (async () => {
+      try {
+        if (await attemptChanges()) {
+          lastError = null;
+          return true;
+        }
+      } catch (e) {
+        lastError = e;  // a whole state follows
+      }
       for (const budget of [HISTORY_BYTES, HISTORY_BYTES / 8, 0]) {
         if (budget !== HISTORY_BYTES && host.busy()) { dirty = true; schedule(); return false; } // a drag began
         try {
@@ -110,12 +179,9 @@ export function createAutosave(key, host) {
     }
   }
 
-  async function read() {
-    const d = await db();
-    return getChunked(d.transaction(STORE, 'readonly').objectStore(STORE), key);
-  }
+  const read = async () => readSaved(await db(), key);
 
-  function describe(r) {
+  function describe(r) {  // r: a summary()
     const t = new Date(r.savedAt);
     const when = t.toDateString() === new Date().toDateString() ? t.toLocaleTimeString() : t.toLocaleString();
     return `${r.name} · ${Number(r.vertices).toLocaleString('en-US')} vertices · saved ${when}`;
@@ -174,17 +240,26 @@ export function createAutosave(key, host) {
       return write();
     },
     // What is saved: {name, vertices, faces, savedAt, bytes, key} or null.
+    // changes: records after the whole state; lastBytes: the newest one's size (or the whole state's).
     async saved() {
       const r = await read();
-      return r && { key: r.key, name: r.name, vertices: r.vertices, faces: r.faces, savedAt: r.savedAt, bytes: r.bytes };
+      return r && summary(r);
     },
     // Loads the saved mesh, settings and history (Ctrl+Z continues where it was). Null if none.
     async restore() {
-      const r = await read();
+      const saved = await read();
       hidePrompt();
-      if (!r) return null;
-      host.session.restoreState(new Uint8Array(r.state)); // throws on a damaged record; the mesh stays
+      if (!saved) return null;
+      // Throws on a damaged state or record; the mesh stays.
+      host.session.restoreSaved(new Uint8Array(saved.base.state), saved.records.map((x) => new Uint8Array(x.state)));
+      const r = summary(saved);
       host.restored(r);
+      // The session is what was saved: later changes continue the same chain (the core's too).
+      chain = saved.base.chain || null;
+      seq = saved.records.length;
+      baseBytes = saved.base.bytes;
+      recordBytes = r.bytes - baseBytes;
+      if (saved.records.length < (await run(await db(), 'readonly', (s) => s.count(recordRange(key))))) chain = null;
       dirty = false;
       return { name: r.name, vertices: r.vertices, faces: r.faces, savedAt: r.savedAt };
     },
@@ -192,7 +267,8 @@ export function createAutosave(key, host) {
     async clear() {
       hidePrompt();
       clearTimeout(timer);
-      await run(await db(), 'readwrite', (s) => deleteChunked(s, key));
+      chain = null;
+      await run(await db(), 'readwrite', (s) => { s.delete(recordRange(key)); return deleteChunked(s, key); });
       if (dirty) schedule(); // changes made while the offer was up
     },
     // Offers the saved session, if any (called once at start-up). Until it is answered nothing
@@ -200,7 +276,8 @@ export function createAutosave(key, host) {
     async offer() {
       let r = null;
       try {
-        r = await read();
+        const saved = await read();
+        r = saved && summary(saved);
       } catch (e) {
         host.toaster.show(`Autosave is off: ${e.message}`, 'error');
         return null;

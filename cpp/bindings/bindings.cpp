@@ -29,6 +29,7 @@
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <optional>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -448,17 +449,32 @@ class SessionHandle {
   }
 
   // Autosave (web/autosave.js): the whole state as one Uint8Array (sculpt::Session::save_state,
-  // history within max_history_bytes) and back; memoryBytes() for the load-size check.
-  val save_state(double max_history_bytes) const {
+  // history within max_history_bytes), then the changes since as small records (save_changes:
+  // null when a whole state is due), and back, with the records in
+  // order: restoreSaved(state, records) (restoreState(state): none); memoryBytes() for the load-size check.
+  val save_state(double max_history_bytes) {
     return guarded(val::null(), [&] {
       std::vector<std::uint8_t> bytes = session_.save_state(size_t(std::max(0.0, max_history_bytes)));
       return val(emscripten::typed_memory_view(bytes.size(), bytes.data())).call<val>("slice");
     });
   }
-  void restore_state(const val& bytes) {
+  val save_changes() {
+    return guarded(val::null(), [&] {
+      std::optional<std::vector<std::uint8_t>> bytes = session_.save_changes();
+      if (!bytes) return val::null();
+      return val(emscripten::typed_memory_view(bytes->size(), bytes->data())).call<val>("slice");
+    });
+  }
+  void restore_state(const val& bytes) { restore_state_with(bytes, val::array()); }
+  void restore_state_with(const val& bytes, const val& changes) {
     guarded_void([&] {
       std::vector<std::uint8_t> data = copy_typed_array<std::uint8_t>(bytes, "Uint8Array");
-      session_.restore_state(data.data(), data.size());
+      std::vector<std::vector<std::uint8_t>> records;
+      const unsigned n = changes.isUndefined() || changes.isNull() ? 0 : changes["length"].as<unsigned>();
+      for (unsigned i = 0; i < n; ++i) records.push_back(copy_typed_array<std::uint8_t>(changes[i], "Uint8Array"));
+      std::vector<sculpt::Session::ByteSpan> spans;
+      for (const auto& r : records) spans.push_back({r.data(), r.size()});
+      session_.restore_state(data.data(), data.size(), spans);
       sync(true);
     });
   }
@@ -592,7 +608,9 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("stats", &SessionHandle::stats)
       .function("exportMesh", &SessionHandle::export_mesh)
       .function("saveState", &SessionHandle::save_state)
+      .function("saveChanges", &SessionHandle::save_changes)
       .function("restoreState", &SessionHandle::restore_state)
+      .function("restoreSaved", &SessionHandle::restore_state_with)  // (embind 3.1.6: no overload by arity)
       .function("memoryBytes", &SessionHandle::memory_bytes)
       .function("positions", &SessionHandle::positions)
       .function("normals", &SessionHandle::normals)

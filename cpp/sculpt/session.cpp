@@ -7,6 +7,7 @@
 #include <cstring>
 #include <deque>
 #include <memory>
+#include <random>
 #include <stdexcept>
 
 #include <glm/common.hpp>
@@ -22,6 +23,7 @@
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
 #include "sculpt/session_state.h"
+#include "sculpt/state_changes.h"
 #include "sculpt/undo_log.h"
 
 namespace adasculpt::sculpt {
@@ -49,6 +51,9 @@ struct Session::Impl {
   // steps (they refer to slots); step_touched gathers the current step's touched vertices across
   // clear_changes() calls.
   UndoLog history;
+  // The changes since the last saved state, for incremental autosave (state_changes.h); started
+  // by save_state and restore_state, stopped by anything that is not a local step.
+  ChangeJournal journal;
   std::vector<mesh::Vertex> step_touched;
   size_t step_touched_from = 0;  // where the current step's vertices start in changes.touched_vertices
   // step_touched holds each vertex once: a grab touches its whole region every frame, and the
@@ -90,6 +95,7 @@ struct Session::Impl {
     if (!mesh::find_mask(mesh).is_valid()) {
       mesh.add_vertex_property<float>(mesh::kMaskProperty, 0.0f);
       history.adopt_new_arrays(mesh);  // all zero on both sides: the step logs the change
+      journal.stop();  // a change record cannot add an array: the next save is a full state
     }
     push_undo();
     last = FrameTimings{};
@@ -181,6 +187,9 @@ struct Session::Impl {
     }
     return tree;
   }
+  StateSettings state_settings() const {
+    return {options.epsilon, options.min_length, options.max_length, options.feature_angle_deg, diagonal};
+  }
   void require_mesh(const char* what) const {
     if (!has_mesh) throw std::logic_error(std::string(what) + ": no mesh loaded");
   }
@@ -209,6 +218,7 @@ struct Session::Impl {
   void commit_step() {
     move_step_touched();
     history.commit_local(mesh, step_touched);
+    journal.commit(history, mesh);
     step_touched.clear();
     step_touched.shrink_to_fit();
   }
@@ -248,6 +258,10 @@ struct Session::Impl {
     const bool done = back ? history.undo(mesh, &touched, &whole, &changes.touched_faces)
                            : history.redo(mesh, &touched, &whole, &changes.touched_faces);
     if (!done) return false;
+    if (back)
+      journal.undo();
+    else
+      journal.redo();
     if (whole) {
       mesh_replaced();
     } else {
@@ -276,6 +290,7 @@ void Session::load(mesh::SurfaceMesh m) {
   s.mesh = std::move(m);
   s.has_mesh = true;
   s.new_base();
+  s.journal.stop();
   for (bool& r : s.relative) r = true;
   s.options = remesh::default_options_for(s.mesh);
   s.options.adaptive = true;
@@ -490,6 +505,7 @@ void Session::remesh(int iterations, double detail) {
   s.remesh_warning = remesh::remesh(s.mesh, o).warning;
   if (s.mesh.has_garbage()) s.mesh.garbage_collection();
   s.history.commit_whole(s.mesh);
+  s.journal.stop();  // a whole mesh is not an increment: the next save writes a full state
   s.last = FrameTimings{};
   s.last.remesh_ms = s.last.total_ms = ms_since(t0);
   s.mesh_replaced();
@@ -604,17 +620,47 @@ std::vector<uint8_t> Session::export_bytes(io::Format f) const {
   return io::save_mesh_to_memory(impl_->mesh, f);
 }
 
-std::vector<uint8_t> Session::save_state(size_t max_history_bytes) const {
-  const Impl& s = *impl_;
+namespace {
+// Ties change records to their full state: two tabs (or two saves) never share one.
+std::uint64_t new_chain_id() {
+  static std::uint64_t counter = 0;
+  std::uint64_t x = std::uint64_t(std::chrono::system_clock::now().time_since_epoch().count()) ^ (++counter << 48);
+  try {
+    std::random_device rd;
+    x ^= (std::uint64_t(rd()) << 32) ^ rd();
+  } catch (...) {  // no entropy source: time and counter only
+  }
+  x += 0x9e3779b97f4a7c15ull;  // splitmix64's finaliser spreads the bits
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  x ^= x >> 31;
+  return x ? x : 1;  // 0 means "no chain" (a version 2 state)
+}
+}  // namespace
+
+std::vector<uint8_t> Session::save_state(size_t max_history_bytes) {
+  Impl& s = *impl_;
   s.require_mesh("save state");
   if (s.grabbing || s.brushing || s.masking) throw std::logic_error("save state: a grab or a stroke is in progress");
-  const StateSettings settings{s.options.epsilon, s.options.min_length, s.options.max_length,
-                               s.options.feature_angle_deg, s.diagonal};
-  return encode_session_state(settings, s.mesh, s.history, max_history_bytes);
+  const std::uint64_t chain = new_chain_id();
+  size_t n_undo = 0, n_redo = 0;
+  std::vector<uint8_t> out =
+      encode_session_state(s.state_settings(), s.mesh, s.history, max_history_bytes, chain, &n_undo, &n_redo);
+  s.journal.start(chain, 0, n_undo, n_redo, out.size());
+  return out;
 }
 
-void Session::restore_state(const uint8_t* data, size_t size) {
+std::optional<std::vector<uint8_t>> Session::save_changes() {
+  Impl& s = *impl_;
+  s.require_mesh("save changes");
+  if (s.grabbing || s.brushing || s.masking) throw std::logic_error("save changes: a grab or a stroke is in progress");
+  return s.journal.take(s.state_settings());
+}
+
+void Session::restore_state(const uint8_t* data, size_t size, const std::vector<ByteSpan>& changes) {
   DecodedState state = decode_session_state(data, size, kMaxUndoSteps, kMaxUndoBytes);
+  for (size_t i = 0; i < changes.size(); ++i)
+    apply_state_change(state, std::uint32_t(i + 1), changes[i].data, changes[i].size);
   remesh::RemeshOptions o = remesh::default_options_for(state.mesh);
   o.adaptive = true;
   o.epsilon = state.settings.epsilon;
@@ -638,6 +684,11 @@ void Session::restore_state(const uint8_t* data, size_t size) {
   s.diagonal = state.settings.diagonal;
   s.last = FrameTimings{};
   s.mesh_replaced();
+  // The session is what the saved records describe: later changes can go on as records after them.
+  if (state.chain != 0)
+    s.journal.start(state.chain, std::uint32_t(changes.size()), s.history.undo_steps(), s.history.redo_steps(), size);
+  else
+    s.journal.stop();
 }
 
 size_t Session::undo_steps() const { return impl_->history.undo_steps(); }

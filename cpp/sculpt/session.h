@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -164,13 +165,27 @@ class Session {
   // steps, as many as fit in max_history_bytes (serialized size; the current mesh is always
   // included). Everything comes back bit for bit, slot numbering included. Throws
   // std::logic_error without a mesh or during a grab/stroke.
+  // Each full state starts a chain of change records (save_changes).
   static constexpr size_t kDefaultStateHistoryBytes = size_t(96) << 20;
-  std::vector<uint8_t> save_state(size_t max_history_bytes = kDefaultStateHistoryBytes) const;
-  // Replaces mesh, settings and history with a save_state() blob; all or nothing: a truncated or
-  // corrupt blob (a mesh or any state the history reaches that is not a valid surface) throws
-  // std::invalid_argument and nothing changes. Ends any grab. Checking the history visits every
-  // state it holds (a swap of the changed slots and a validate() per step).
-  void restore_state(const uint8_t* data, size_t size);
+  std::vector<uint8_t> save_state(size_t max_history_bytes = kDefaultStateHistoryBytes);
+  // Incremental autosave (state_changes.h): the changes since the last save_state/save_changes (new
+  // undo steps, each the size of its changed region, undos, redos, the settings) as one small
+  // record, the next of the chain. nullopt when they cannot be a record (nothing saved or restored
+  // yet, a load or whole remesh since, an undo past the history the full state kept, or records
+  // adding up to the full state's size): then save_state() is due. Throws as save_state.
+  std::optional<std::vector<uint8_t>> save_changes();
+  // Replaces mesh, settings and history with a save_state() blob followed by its change records
+  // (in order, the first after the blob first): the session ends where the last record was saved,
+  // with the same undo/redo history. All or nothing: a truncated or corrupt blob or record (a mesh
+  // or any state the history reaches that is not a valid surface, a record of another chain or out
+  // of order) throws std::invalid_argument("saved state: ...") and nothing changes. Ends any grab.
+  // Checking visits every state the history holds (a swap of the changed slots and a validate()
+  // per step). Later save_changes() records continue the same chain.
+  struct ByteSpan {
+    const uint8_t* data;
+    size_t size;
+  };
+  void restore_state(const uint8_t* data, size_t size, const std::vector<ByteSpan>& changes = {});
   // Undo and redo steps held, and the rough heap size of the mesh, the history's copy of it
   // (undo_log.h: the shadow) and the history (bytes).
   size_t undo_steps() const;

@@ -11,7 +11,7 @@ namespace adasculpt::sculpt {
 
 namespace {
 constexpr char kStateMagic[8] = {'A', 'D', 'S', 'C', 'S', 'T', 'A', 'T'};
-constexpr std::uint32_t kStateVersion = 2;
+constexpr std::uint32_t kStateVersion = 3;  // 2: the same without the chain id (still read)
 
 bool little_endian_host() {
   const std::uint32_t probe = 1;
@@ -21,8 +21,23 @@ bool little_endian_host() {
 }
 }  // namespace
 
+void write_state_settings(const StateSettings& s, std::vector<std::uint8_t>& out) {
+  for (double x : {s.epsilon, s.min_length, s.max_length, s.feature_angle_deg, s.diagonal}) byte_io::put(out, x);
+}
+
+StateSettings read_state_settings(const std::uint8_t*& p, size_t& left) {
+  byte_io::Reader r{p, left};
+  StateSettings s;
+  for (double* x : {&s.epsilon, &s.min_length, &s.max_length, &s.feature_angle_deg, &s.diagonal})
+    *x = r.get<double>();
+  if (!(s.diagonal > 0) || !std::isfinite(s.diagonal)) byte_io::fail("bad diagonal");
+  if (!(s.min_length <= s.max_length)) byte_io::fail("'min_length' exceeds 'max_length'");
+  return s;
+}
+
 std::vector<std::uint8_t> encode_session_state(const StateSettings& settings, const mesh::SurfaceMesh& mesh,
-                                               const UndoLog& history, size_t max_history_bytes) {
+                                               const UndoLog& history, size_t max_history_bytes,
+                                               std::uint64_t chain, size_t* n_undo_out, size_t* n_redo_out) {
   if (!little_endian_host()) throw std::logic_error("save state: big-endian host");
   // Undo steps apply in order from the newest, so the kept ones are the newest run; likewise redo.
   const auto& undo = history.undo_list();
@@ -43,14 +58,15 @@ std::vector<std::uint8_t> encode_session_state(const StateSettings& settings, co
   out.reserve(64 + mesh_slots_serialized_size(mesh) + used);
   for (char c : kStateMagic) out.push_back(std::uint8_t(c));  // (vector::insert of the char range trips a g++ 12 false -Wstringop-overflow)
   byte_io::put(out, kStateVersion);
-  for (double x : {settings.epsilon, settings.min_length, settings.max_length, settings.feature_angle_deg,
-                   settings.diagonal})
-    byte_io::put(out, x);
+  byte_io::put(out, chain);
+  write_state_settings(settings, out);
   byte_io::put(out, std::uint32_t(n_undo));
   byte_io::put(out, std::uint32_t(n_redo));
   write_mesh_slots(mesh, out);
   for (size_t i = undo.size() - n_undo; i < undo.size(); ++i) UndoLog::write_step(*undo[i], out);
   for (size_t i = redo.size() - n_redo; i < redo.size(); ++i) UndoLog::write_step(*redo[i], out);
+  if (n_undo_out) *n_undo_out = n_undo;
+  if (n_redo_out) *n_redo_out = n_redo;
   return out;
 }
 
@@ -61,13 +77,10 @@ DecodedState decode_session_state(const std::uint8_t* data, size_t size, size_t 
   size_t left = size - 8;
   byte_io::Reader r{p, left};
   const std::uint32_t version = r.get<std::uint32_t>();
-  if (version != kStateVersion) byte_io::fail("unsupported version " + std::to_string(version));
+  if (version != kStateVersion && version != 2) byte_io::fail("unsupported version " + std::to_string(version));
   DecodedState out;
-  StateSettings& s = out.settings;
-  for (double* x : {&s.epsilon, &s.min_length, &s.max_length, &s.feature_angle_deg, &s.diagonal})
-    *x = r.get<double>();
-  if (!(s.diagonal > 0) || !std::isfinite(s.diagonal)) byte_io::fail("bad diagonal");
-  if (!(s.min_length <= s.max_length)) byte_io::fail("'min_length' exceeds 'max_length'");
+  if (version >= 3) out.chain = r.get<std::uint64_t>();
+  out.settings = read_state_settings(p, left);
   const std::uint32_t n_undo = r.get<std::uint32_t>(), n_redo = r.get<std::uint32_t>();
   if (std::uint64_t(n_undo) + n_redo > left / 16) byte_io::fail("truncated history");
   out.mesh = read_mesh_slots(p, left);

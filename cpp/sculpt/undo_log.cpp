@@ -672,4 +672,61 @@ void UndoLog::read_history(SurfaceMesh& m, const std::uint8_t*& p, size_t& left,
   *this = std::move(trial);
 }
 
+bool UndoLog::write_newest_for_replay(const SurfaceMesh& m, std::vector<std::uint8_t>& out) const {
+  if (undo_.empty() || undo_.back()->whole) return false;
+  const Step& s = *undo_.back();
+  put(out, std::uint8_t(0));
+  for (int k = 0; k < kKinds; ++k) {
+    const Step::Block& b = s.blocks[k];
+    const PropertyContainer& c = container(m, k);
+    // Same slots and arrays as the held (before) form, with the mesh's values: what redo swaps in.
+    put(out, std::uint32_t(c.size()));
+    put(out, std::uint64_t(b.slots.size()));
+    const auto* raw = reinterpret_cast<const std::uint8_t*>(b.slots.data());
+    out.insert(out.end(), raw, raw + b.slots.size() * 4);
+    std::vector<Step::Values> values, tail;
+    for (const Step::Values& v : b.values) {
+      BasePropertyArray* a = find_array(c, v.name, v.bytes);  // raw() is non-const (see container())
+      if (!a) throw std::logic_error("undo log: the mesh lost the array '" + v.name + "' of its newest step");
+      Step::Values w{v.name, v.bytes, std::vector<std::uint8_t>(b.slots.size() * v.bytes)};
+      for (size_t j = 0; j < b.slots.size(); ++j)
+        std::memcpy(w.data.data() + j * v.bytes, a->raw() + size_t(b.slots[j]) * v.bytes, v.bytes);
+      values.push_back(std::move(w));
+    }
+    // The slots the step appended, as undo would have put them into its tail.
+    if (c.size() > b.size_held)
+      for (size_t i = 0; i < c.n_arrays(); ++i) {
+        BasePropertyArray* a = c.array(i);
+        if (!builtin(a->name())) continue;
+        const size_t eb = a->element_bytes();
+        tail.push_back({a->name(), std::uint32_t(eb),
+                        std::vector<std::uint8_t>(a->raw() + b.size_held * eb, a->raw() + c.size() * eb)});
+      }
+    write_values(out, values);
+    write_values(out, tail);
+  }
+  write_counts(out, m.deleted_counts());
+  return true;
+}
+
+void UndoLog::replay_commit(SurfaceMesh& m, const std::uint8_t*& p, size_t& left, size_t keep_undo) {
+  std::unique_ptr<Step> s = read_step(p, left);
+  if (s->whole) fail("a change record holds a whole mesh");
+  // A commit starts a new branch: the redo steps go, as commit_local drops them. swap_step checks
+  // the step against the mesh before it changes anything; only then is the redo list touched.
+  std::deque<std::unique_ptr<Step>> dropped;
+  dropped.swap(redo_);
+  redo_.push_back(std::move(s));
+  try {
+    redo(m, nullptr, nullptr);
+  } catch (...) {
+    redo_.swap(dropped);
+    throw;
+  }
+  while (undo_.size() > keep_undo && undo_.size() > 1) {
+    undo_bytes_ -= undo_.front()->bytes();
+    undo_.pop_front();
+  }
+}
+
 }  // namespace adasculpt::sculpt

@@ -90,6 +90,17 @@ class UndoLog {
   void read_history(mesh::SurfaceMesh& m, const std::uint8_t*& p, size_t& left, std::uint32_t n_undo,
                     std::uint32_t n_redo);
 
+  // ---- incremental autosave (state_changes.h). The newest undo step written in its redo form (the
+  // values of its slots after it, taken from `m`, which must be the state right after the commit),
+  // so that a reader holding the state before it can replay it. False, writing nothing, when there
+  // is no step or it is a whole-mesh step (a whole mesh is not an increment).
+  bool write_newest_for_replay(const mesh::SurfaceMesh& m, std::vector<std::uint8_t>& out) const;
+  // Replays such a record as the commit it was: drops the redo steps, redoes the step on `m` and
+  // then drops the oldest undo steps past keep_undo (the writer's count after the commit, so the
+  // limits trim as they did there). A step that does not fit `m` throws std::invalid_argument
+  // before changing anything; the caller validates the resulting mesh.
+  void replay_commit(mesh::SurfaceMesh& m, const std::uint8_t*& p, size_t& left, size_t keep_undo);
+
  private:
   static std::unique_ptr<Step> read_step(const std::uint8_t*& p, size_t& left);
   bool swap_step(Step& s, mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole,

@@ -1,5 +1,5 @@
-// node:test of the wasm Session's autosave calls (saveState, restoreState, memoryBytes) that
-// web/autosave.js uses: a restored session exports the same bytes, keeps its settings and its
+// node:test of the wasm Session's autosave calls (saveState, saveChanges, restoreState, restoreSaved,
+// memoryBytes) that web/autosave.js uses: a restored session exports the same bytes, keeps its settings and its
 // undo/redo history, a damaged state is refused with the mesh kept, and the history budget holds.
 const test = require('node:test');
 const assert = require('node:assert');
@@ -68,6 +68,58 @@ test('saveState / restoreState: same mesh, settings and history in a new Session
     b.grabBegin(0, 0, 1, 0.1, 0.5);
     assert.throws(() => b.saveState(1e6), /a grab or a stroke is in progress/);
     b.grabEnd();
+  } finally {
+    a.delete();
+    b.delete();
+  }
+});
+
+// Incremental autosave: a full state once, then saveChanges() records (a pull, an undo, a redo, a
+// new pull that drops the redo step, a settings change); restoreSaved(state, records) in a new
+// Session gives the same mesh, settings and history. Records are small; a damaged one is refused.
+test('saveChanges: a full state plus small records restores the session exactly', { skip }, () => {
+  const a = new M.Session(), b = new M.Session();
+  try {
+    a.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    assert.strictEqual(a.saveChanges(), null, 'no full state yet');
+    const state = a.saveState(96 * 2 ** 20);
+    const records = [];
+    const save = () => {
+      const r = a.saveChanges();
+      assert.ok(r instanceof Uint8Array);
+      records.push(r);
+    };
+    const m0 = ply(a);
+    pull(a, [0, 0, 1], [0, 0, 0.2]);
+    save();
+    const m1 = ply(a);
+    pull(a, [1, 0, 0], [0.2, 0, 0]);
+    assert.ok(a.undo());
+    save();
+    assert.ok(a.redo() && a.undo());
+    pull(a, [0, 1, 0], [0, 0.2, 0]);  // drops the redo step
+    a.setSettings({ epsilon: '0.1%' });
+    save();
+    const m2 = ply(a);
+    for (const r of records) assert.ok(r.byteLength < state.byteLength / 4, `${r.byteLength} of ${state.byteLength}`);
+
+    b.restoreSaved(state, records);
+    assert.ok(ply(b).equals(m2));
+    assert.deepStrictEqual(b.settings(), a.settings());
+    assert.ok(b.canUndo() && !b.canRedo());
+    assert.ok(b.undo() && ply(b).equals(m1));
+    assert.ok(b.undo() && ply(b).equals(m0));
+    assert.strictEqual(b.undo(), false);
+
+    // Damaged, missing or out-of-order records: refused, and the session stays as it was.
+    const cut = records[1].slice(0, records[1].length - 3);
+    assert.throws(() => b.restoreSaved(state, [records[0], cut, records[2]]), /saved state: a change record is damaged/);
+    assert.ok(ply(b).equals(m0));
+    assert.throws(() => b.restoreSaved(state, [records[0], records[2]]), /saved state: change record 3 where 2 belongs/);
+    assert.ok(ply(b).equals(m0));
+    // A whole remesh cannot be a record: a full state is due.
+    a.remesh(1);
+    assert.strictEqual(a.saveChanges(), null);
   } finally {
     a.delete();
     b.delete();
