@@ -168,29 +168,3 @@ TEST(SculptUndoLog, RestoredStateIsExactToTheSlot) {
 }
 
 }  // namespace
-
-// Redrawing a stroke after undoing it gives the first result again, slot for slot. (It did not while
-// each new remesher took over the arrays the last one left on the mesh: its scope and projection
-// hints from before the undo steered the second stroke; now a remesher removes its arrays.)
-TEST(SculptUndoLog, AStrokeUndoneAndDrawnAgainGivesTheSameMesh) {
-  for (int tool : {int(deform::BrushTool::Inflate), int(deform::BrushTool::Draw), int(deform::BrushTool::Crease)}) {
-    sculpt::Session s;
-    s.load(mesh::make_icosphere(4));
-    sculpt::BrushStroke stroke;
-    stroke.settings.tool = deform::BrushTool(tool);
-    stroke.settings.radius = 0.2;
-    stroke.settings.strength = 0.6;
-    stroke.settings.symmetry_axis = 0;
-    for (int i = 0; i < 8; ++i) {
-      const double y = -0.3 + 0.08 * i;
-      stroke.path.emplace_back(0.3, y, std::sqrt(1 - 0.09 - y * y));
-    }
-    s.brush_stroke(stroke);
-    const mesh::SurfaceMesh first = s.mesh();
-    for (int round = 0; round < 2; ++round) {
-      ASSERT_TRUE(s.undo());
-      s.brush_stroke(stroke);
-      EXPECT_TRUE(same_slots(s.mesh(), first)) << "tool " << tool << ", round " << round;
-    }
-  }
-}

@@ -4,22 +4,14 @@
 const test = require('node:test');
 const assert = require('node:assert');
 
-const { skip, sphereObj, loadModule } = require('./wasm-module.cjs');
+const { skip, loadModule, withSphere: withSphereOf } = require('./wasm-module.cjs');
 
 let M;
 test.before(async () => {
   M = await loadModule();
 });
 
-function withSphere(fn) {
-  const s = new M.Session();
-  try {
-    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
-    return fn(s);
-  } finally {
-    s.delete();
-  }
-}
+const withSphere = (fn) => withSphereOf(M, fn);
 
 const exported = (s) => Buffer.from(s.exportMesh('off'));
 const quality = (s) => s.stats();
