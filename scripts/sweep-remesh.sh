@@ -9,8 +9,10 @@
 # `adasculpt stats OUT --reference IN --self-intersections`. Prints ONE table (mesh, setting, ms, CPU s,
 # peak MB, vertices, min / mean min angle, Hausdorff % of the diagonal, input SI pairs, new SI pairs =
 # output - input, status) and a summary of the misses of the targets, worst first, each with the
-# command that reproduces it: cap hits and crashes, new crossing pairs, Hausdorff > 2 eps (adaptive) or
-# > length (uniform), a coarser setting (larger eps / min length / length) giving more vertices.
+# command that reproduces it: cap hits and crashes, new crossing pairs, Hausdorff > 2 max(eps, min length / 2)
+# (adaptive: the min length the user set wins where eps asks for shorter edges) or > length (uniform), a
+# coarser setting (larger eps / min length / length) giving more than 1 % (+5) more vertices (see
+# MIN_LENGTH_REACH and MONOTONE_SLACK in scripts/sweep_remesh.py).
 #
 #   scripts/sweep-remesh.sh [options]
 #     -j N               parallel runs (default 2)
