@@ -253,11 +253,11 @@ TriangleTree::ClosestHit TriangleTree::closest_point_facing(const Point& q, cons
   return best;
 }
 
-TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3& dir) const {
+TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3& dir, double t_max) const {
   RayHit best;
   if (nodes_.empty()) return best;
   constexpr double kMiss = std::numeric_limits<double>::infinity();
-  double t_best = kMiss;
+  double t_best = t_max;
   // Slab test; an axis the ray is parallel to only checks that the origin is inside the slab
   // (avoids 0 * inf = NaN).
   Vec3 inv;

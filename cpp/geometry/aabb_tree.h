@@ -8,6 +8,7 @@
 // stack on the call stack and never allocate, so they are safe to run from many threads
 // on one const tree.
 #include <array>
+#include <limits>
 #include <cstdint>
 #include <vector>
 
@@ -57,8 +58,10 @@ class TriangleTree {
   ClosestHit closest_point_facing(const Point& q, const Vec3& facing, const ClosestHit* hint = nullptr) const;
   // Whether tree triangle `tri` faces the side of `facing` (as above).
   bool faces(std::uint32_t tri, const Vec3& facing) const;
-  // Nearest intersection with t >= 0 of the ray origin + t*dir, front or back side.
-  RayHit intersect_ray(const Point& origin, const Vec3& dir) const;
+  // Nearest intersection with 0 <= t < t_max of the ray origin + t*dir, front or back side. A
+  // finite t_max prunes every box beyond it (a short probe costs a few nodes, not a traversal).
+  RayHit intersect_ray(const Point& origin, const Vec3& dir,
+                       double t_max = std::numeric_limits<double>::infinity()) const;
 
  private:
   struct Node {

@@ -254,6 +254,17 @@ void Remesher::Impl::build_reference() {
   std::vector<Vertex> all;
   all.reserve(mesh.n_vertices());
   for (Vertex v : mesh.vertices()) all.push_back(v);
+  // The tree first: the sizing measures the thickness of thin parts on it.
+  std::vector<Point> points(mesh.positions().begin(), mesh.positions().end());
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  triangles.reserve(mesh.n_faces());
+  for (mesh::Face f : mesh.faces()) {
+    Vertex c[3];
+    mesh.face_vertices(f, c);
+    triangles.push_back({c[0].idx, c[1].idx, c[2].idx});
+  }
+  tree.build(std::move(points), std::move(triangles));
+  has_reference = !tree.empty();
 
   if (opt.adaptive) {
     if (clamp_decides_sizing()) {
@@ -266,23 +277,14 @@ void Remesher::Impl::build_reference() {
           sizing[v] = sizing_from_curvature(smoothed_curvature(mesh, vclass, kappa, nullptr, v), opt.epsilon,
                                             opt.min_length, opt.max_length);
     }
+    clamp_sizing_to_thickness(all);
     average_feature_sizing(all);
     limit_sizing_gradation(mesh, all, sizing, kGradation);
   } else {
     for (Vertex v : all) sizing[v] = opt.target_length;
   }
 
-  std::vector<Point> points(mesh.positions().begin(), mesh.positions().end());
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  triangles.reserve(mesh.n_faces());
-  for (mesh::Face f : mesh.faces()) {
-    Vertex c[3];
-    mesh.face_vertices(f, c);
-    triangles.push_back({c[0].idx, c[1].idx, c[2].idx});
-  }
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
-  tree.build(std::move(points), std::move(triangles));
-  has_reference = !tree.empty();
   estimate_vertex_budget();
   ref_near_neck.assign(tree.points().size(), 0);
   necks.clear();

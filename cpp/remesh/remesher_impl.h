@@ -169,6 +169,9 @@ struct Remesher::Impl : RemeshScratch {
   void drop_isolated_features();
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
+  // Lowers the sizing of free vertices where the part is thinner than it (thickness.cpp); needs
+  // the reference tree (build_reference).
+  void clamp_sizing_to_thickness(const std::vector<Vertex>& vertices);
   // min_length == max_length (a constant detail, as the brush comparison and some sculptors use):
   // the clamp gives every free vertex that length whatever its curvature, so none is measured.
   bool clamp_decides_sizing() const { return !(opt.min_length < opt.max_length); }
