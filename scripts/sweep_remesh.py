@@ -580,6 +580,10 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, labe
         f"{sweep.cpu_cap:g} s CPU and {sweep.mem_cap} MB address space, measured by",
         "`adasculpt stats --reference INPUT --self-intersections` (exact self-intersection test, CGAL's definition;",
         "\"new SI\" = output pairs minus input pairs; Hausdorff relative to the input's bounding-box diagonal).",
+        "Judged: no cap hit or crash, no new crossing pairs, Hausdorff <= 2 max(eps, min length / 2) (adaptive; the",
+        "min length wins where eps asks for shorter edges) or <= the length (uniform), and no coarser setting with",
+        f"more than {100 * MONOTONE_SLACK:g} % (+{MONOTONE_SLACK_VERTICES}) more vertices "
+        "(scripts/sweep_remesh.py: MIN_LENGTH_REACH, MONOTONE_SLACK).",
         "",
         "Regenerate:",
         "",
