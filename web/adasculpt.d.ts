@@ -542,6 +542,8 @@ export interface RenderChanges extends MeshCounts {
   vertexBegin: number; vertexEnd: number; faceBegin: number; faceEnd: number;
   vertexCount: number; faceCount: number; vertexCapacity: number; faceCapacity: number;
   positionsPtr: number; normalsPtr: number; masksPtr: number; indicesPtr: number;
+  /** The face slots whose triangle changed (uint32 at dirtyFacesPtr, valid until the next call), or all of them when allFacesDirty. */
+  allFacesDirty: boolean; dirtyFacesPtr: number; dirtyFaceCount: number;
   timings: FrameTimings;
 }
 

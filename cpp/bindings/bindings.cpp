@@ -525,6 +525,11 @@ class SessionHandle {
     r.set("normalsPtr", reinterpret_cast<std::uintptr_t>(buffers_.normals()));
     r.set("masksPtr", reinterpret_cast<std::uintptr_t>(buffers_.masks()));
     r.set("indicesPtr", reinterpret_cast<std::uintptr_t>(buffers_.indices()));
+    // The face slots whose triangle changed (web/slot-ray-tree.js refits only those), valid until
+    // the next changes(); allFacesDirty instead after a rebuild or a reallocation.
+    r.set("allFacesDirty", buffers_.all_faces_dirty());
+    r.set("dirtyFacesPtr", reinterpret_cast<std::uintptr_t>(buffers_.dirty_faces()));
+    r.set("dirtyFaceCount", double(buffers_.dirty_face_count()));
     val ms = val::object();
     ms.set("roi", t.roi_ms);
     ms.set("field", t.field_ms);
