@@ -13,6 +13,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "geometry/angle_figures.h"
 #include "geometry/face_slot_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
@@ -106,6 +107,8 @@ struct Session::Impl {
   // refitted where strokes, grabs, undo and redo changed it. The changes reach it from `changes`
   // (noted_* say how much of its lists it has seen), so clear_changes() notes them first.
   mutable geometry::FaceSlotTree slot_tree;
+  // The stats shown after every stroke (quick_quality), kept from the same changes.
+  mutable geometry::AngleFigures angle_figures;
   mutable size_t noted_vertices = 0, noted_faces = 0;
 
   FrameTimings last;
@@ -179,6 +182,7 @@ struct Session::Impl {
     }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
     slot_tree.invalidate();
+    angle_figures.invalidate();
     changes.everything = true;
     changes.topology_changed = true;
     changes.touched_vertices.clear();
@@ -189,8 +193,14 @@ struct Session::Impl {
   void note_changes() const {
     const auto& tv = changes.touched_vertices;
     const auto& tf = changes.touched_faces;
-    for (size_t i = std::min(noted_vertices, tv.size()); i < tv.size(); ++i) slot_tree.mark_vertex(mesh, tv[i]);
-    for (size_t i = std::min(noted_faces, tf.size()); i < tf.size(); ++i) slot_tree.mark_face(tf[i]);
+    for (size_t i = std::min(noted_vertices, tv.size()); i < tv.size(); ++i) {
+      slot_tree.mark_vertex(mesh, tv[i]);
+      angle_figures.mark_vertex(mesh, tv[i]);
+    }
+    for (size_t i = std::min(noted_faces, tf.size()); i < tf.size(); ++i) {
+      slot_tree.mark_face(tf[i]);
+      angle_figures.mark_face(tf[i]);
+    }
     noted_vertices = tv.size();
     noted_faces = tf.size();
   }
@@ -615,6 +625,18 @@ nlohmann::json Session::replay(const nlohmann::json& session_file) {
 geometry::QualityReport Session::quality() const {
   impl_->require_mesh("quality");
   return geometry::quality_report(impl_->mesh);
+}
+
+geometry::QualityReport Session::quick_quality() const {
+  const Impl& s = *impl_;
+  s.require_mesh("quality");
+  s.note_changes();
+  s.angle_figures.sync(s.mesh);
+  geometry::QualityReport r;
+  r.vertices = s.mesh.n_vertices();
+  r.edges = s.mesh.n_edges();
+  s.angle_figures.fill(r);
+  return r;
 }
 const FrameTimings& Session::last_frame() const { return impl_->last; }
 
