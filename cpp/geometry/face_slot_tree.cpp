@@ -60,25 +60,25 @@ void FaceSlotTree::mark_vertex(const mesh::SurfaceMesh& m, mesh::Vertex v) {
 
 void FaceSlotTree::build(const mesh::SurfaceMesh& m) {
   const std::uint32_t n = std::uint32_t(m.faces_size());
+  // One read of every triangle: its centroid (NaN for a deleted slot), and their box.
+  std::vector<Point> mid(n, Point(std::numeric_limits<double>::quiet_NaN()));
   Point lo(kInf), hi(-kInf);
   for (std::uint32_t f = 0; f < n; ++f) {
     if (!live(m, f)) continue;
     Point c[3];
     corners(m, f, c);
-    lo = glm::min(lo, c[0]);
-    hi = glm::max(hi, c[0]);
+    mid[f] = (c[0] + c[1] + c[2]) / 3.0;
+    lo = glm::min(lo, mid[f]);
+    hi = glm::max(hi, mid[f]);
   }
   const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
   std::vector<std::uint64_t> keys(n);
   for (std::uint32_t f = 0; f < n; ++f) {
     std::uint64_t code = 0xFFFFFFFFull;  // deleted slots last
-    if (live(m, f)) {
-      Point c[3];
-      corners(m, f, c);
-      const Point mid = (c[0] + c[1] + c[2]) / 3.0;
+    if (!std::isnan(mid[f].x)) {
       std::uint32_t cell[3];
       for (int k = 0; k < 3; ++k)
-        cell[k] = std::uint32_t(std::clamp((mid[k] - lo[k]) / span * 1024.0, 0.0, 1023.0));
+        cell[k] = std::uint32_t(std::clamp((mid[f][k] - lo[k]) / span * 1024.0, 0.0, 1023.0));
       code = spread10(cell[0]) | (spread10(cell[1]) << 1) | (spread10(cell[2]) << 2);
     }
     keys[f] = (code << 32) | f;
