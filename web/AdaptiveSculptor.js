@@ -499,10 +499,8 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     }
   }
 
-  // The Pull tool's press and hover: the same JS raycast of the drawn geometry as the brushes'.
-  // The core's Session.pick builds an AABB tree of the whole mesh after every stroke or grab
-  // (about 1 s at 1.1M triangles, at the first hover after each); grabBegin snaps the point to
-  // the surface itself.
+  // The Pull tool's press and hover: the same JS raycast of the drawn geometry as the brushes'
+  // (slot-ray-tree.js: no wasm call per hover); grabBegin snaps the point to the surface itself.
   _pick(ray) {
     if (!this.session.hasMesh()) return null;
     const hit = raycastSurface(this.buffers.geometry, ray);

@@ -449,8 +449,8 @@ export interface SculptStats {
   canUndo: boolean;
   canRedo: boolean;
   settings: CoreSettings;
-  /** The core's quality report (`session.stats()`). */
-  quality: QualityReport;
+  /** The core's whole quality report (`session.stats()`), computed when read (a pass over the mesh). */
+  readonly quality: QualityReport;
 }
 
 export interface FrameLogEntry {
@@ -542,6 +542,8 @@ export interface RenderChanges extends MeshCounts {
   vertexBegin: number; vertexEnd: number; faceBegin: number; faceEnd: number;
   vertexCount: number; faceCount: number; vertexCapacity: number; faceCapacity: number;
   positionsPtr: number; normalsPtr: number; masksPtr: number; indicesPtr: number;
+  /** The face slots whose triangle changed (uint32 at dirtyFacesPtr, valid until the next call), or all of them when allFacesDirty. */
+  allFacesDirty: boolean; dirtyFacesPtr: number; dirtyFaceCount: number;
   timings: FrameTimings;
 }
 
@@ -580,7 +582,12 @@ export interface Session {
   canUndo(): boolean;
   canRedo(): boolean;
   replay(file: SessionFile): ReplayReport;
+  /** The whole quality report: a pass over the mesh (about 0.9 s at 1.1M triangles), not for every stroke. */
   stats(): QualityReport;
+  /** What a viewer shows after every stroke, kept up to date from the changes (costs what changed):
+   *  vertices, faces, edges, min/max angle, mean min angle, shares under 30 and 10 degrees, as stats()
+   *  gives them; the other quality keys are 0. */
+  quickStats(): QualityReport;
   exportMesh(format: MeshFormat): Uint8Array;
   /** The whole state (mesh, settings, history within the budget); starts a chain of change records. */
   saveState(maxHistoryBytes: number): Uint8Array;

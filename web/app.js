@@ -57,10 +57,10 @@ export async function createSculptApp(container, options = {}) {
   };
   let disposed = false;
   let firstRenderMs = null;
+  // The stats box's figures (Session.quickStats: kept up to date by the core from each change, so
+  // reading them after every stroke costs the stroke, not the mesh); the whole report (a pass over
+  // the mesh, ~0.9 s at 1.1M triangles) only when app.stats().quality is read.
   let quality = {};
-  let qualityStale = false;  // a stroke ended since `quality` was read (refreshQualityWhenIdle)
-  let endCounts = null;      // {vertices, faces} of the mesh when the last stroke ended
-  let qualityTimer = null;
   const frame = { core: null, copyMs: 0, renderMs: 0, vertices: 0, faces: 0, dragged: false };
   const frameLog = []; // per stroke frame: core phases, buffer update, copy, render (for benchmarks)
   let sourceName = opts.model ? String(opts.model).split(/[?#]/)[0].split('/').pop() : 'mesh';
@@ -68,9 +68,7 @@ export async function createSculptApp(container, options = {}) {
     session, toaster, root: opts.ui ? root : null,
     busy: () => sculptor.busy || session.grabbing() || session.brushing() || session.masking(),
     sourceName: () => sourceName,
-    // A stroke's 'end' carries the counts: a whole-mesh quality pass here would cost an incremental
-    // write (a few ms) 100-200 ms on the dragon.
-    counts: () => (qualityStale && endCounts ? endCounts : { vertices: quality.vertices ?? 0, faces: quality.faces ?? 0 }),
+    counts: () => ({ vertices: quality.vertices ?? 0, faces: quality.faces ?? 0 }),
     restored: (record) => {
       sourceName = record.name;
       showSource();
@@ -92,9 +90,8 @@ export async function createSculptApp(container, options = {}) {
       if (sculptor._stroke) frame.dragged = true;
     }
   });
-  sculptor.addEventListener('end', (e) => {
-    endCounts = Number.isFinite(e.vertices) ? { vertices: e.vertices, faces: e.faces } : null;
-    refreshQualityWhenIdle();
+  sculptor.addEventListener('end', () => {
+    refreshQuality();
     autosave.changed();
   });
   sculptor.addEventListener('params', () => { readToolParams(); if (panel) panel.refresh(); });
@@ -103,9 +100,7 @@ export async function createSculptApp(container, options = {}) {
   sculptor.addEventListener('notice', (e) => toaster.show(e.message));
 
   function refreshQuality() {
-    qualityStale = false;
-    clearTimeout(qualityTimer);
-    quality = session.stats();
+    quality = session.quickStats();
     if (stats) {
       stats.update({
         vertices: quality.vertices ?? 0, faces: quality.faces ?? 0,
@@ -155,23 +150,6 @@ export async function createSculptApp(container, options = {}) {
     viewer.fitView(sculptor.buffers.boundingBox());
     showToolState();
     return { vertices: quality.vertices, faces: quality.faces };
-  }
-
-  // After a brush stroke the whole-mesh quality report (22 ms of WebAssembly on the 35k-vertex
-  // bunny, more than the stroke's stamps together) waits until no stroke or grab runs for a
-  // moment, so that it does not stall the next stroke's first frames; stats() refreshes at once.
-  function refreshQualityWhenIdle() {
-    qualityStale = true;
-    if (panel) panel.setHistory(session.canUndo(), session.canRedo());
-    clearTimeout(qualityTimer);
-    qualityTimer = setTimeout(function settle() {
-      if (disposed || !qualityStale) return;
-      if (session.grabbing() || session.brushing() || session.masking()) {
-        qualityTimer = setTimeout(settle, 250);
-        return;
-      }
-      refreshQuality();
-    }, 250);
   }
 
   // The panel's model list and the export names follow the last opened file or sample.
@@ -272,7 +250,6 @@ export async function createSculptApp(container, options = {}) {
     },
 
     stats() {
-      if (qualityStale) refreshQuality();
       const t = frame.core || {};
       return {
         vertices: quality.vertices ?? 0,
@@ -290,7 +267,7 @@ export async function createSculptApp(container, options = {}) {
         canUndo: session.canUndo(),
         canRedo: session.canRedo(),
         settings: session.settings(),
-        quality,
+        get quality() { return session.stats(); }, // the whole report, when read
       };
     },
 
@@ -483,7 +460,6 @@ export async function createSculptApp(container, options = {}) {
   function dispose() {
     if (disposed) return;
     disposed = true;
-    clearTimeout(qualityTimer);
     cancelAnimationFrame(raf);
     autosave.dispose();
     keyTarget.removeEventListener('keydown', onKey);

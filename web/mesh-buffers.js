@@ -8,6 +8,8 @@
 // Views into wasm memory are built from the reported pointers right here, after the call that
 // produced them: memory growth detaches every older view.
 import * as THREE from 'three';
+import { SlotRayTree } from './slot-ray-tree.js';
+import { attachRayTree } from './surface-raycast.js';
 
 const corner = new THREE.Vector3(); // scratch: apply() allocates nothing per frame
 
@@ -25,6 +27,9 @@ export class MeshBuffers {
     // measured again only after a rebuild (which reports all of them) or a reallocation: no pass
     // over every vertex per stroke. Vertices moved inwards or deleted leave it a little large.
     this.bounds = new THREE.Box3();
+    // Picking (surface-raycast.js) over the face slots: told here which slots each update changed.
+    this.rayTree = new SlotRayTree();
+    attachRayTree(geometry, this.rayTree);
   }
 
   get allocated() { return this.vertexCapacity > 0; }
@@ -49,6 +54,11 @@ export class MeshBuffers {
       copyRange(g.attributes.position, pos, 3 * vb, 3 * ve, fresh);
       copyRange(g.attributes.normal, nrm, 3 * vb, 3 * ve, fresh);
       copyRange(g.attributes.mask, msk, vb, ve, fresh);
+    }
+    if (fresh || ch.rebuilt || ch.allFacesDirty || ch.allFacesDirty === undefined) {
+      this.rayTree.invalidateAll(ch.rebuilt); // a rebuilt mesh (load, whole remesh) is sorted again
+    } else if (ch.dirtyFaceCount > 0) {
+      this.rayTree.invalidate(new Uint32Array(heap, ch.dirtyFacesPtr, ch.dirtyFaceCount));
     }
     if (fe > fb && (fresh || ch.indicesChanged)) {
       copyRange(g.index, idx, 3 * fb, 3 * fe, fresh);
@@ -84,6 +94,7 @@ export class MeshBuffers {
     }
     this.vertexCapacity = vertexCapacity;
     this.faceCapacity = faceCapacity;
+    this.rayTree.resize(faceCapacity);
   }
 
   // Three segments per face slot (each interior edge is drawn twice: a small price for updating the

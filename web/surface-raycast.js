@@ -1,54 +1,64 @@
 // Ray against the drawn surface: the three.js copy of the core's render buffers, searched in JS.
 // A brush stroke needs the surface point under every pointer sample, and asking the core would be
 // a second wasm call per frame (its AABB tree is also stale while the stroke reshapes the mesh).
-// Brute force over the face slots; deleted slots are (0,0,0) triangles and never hit. Plain loops
-// over the typed arrays, no per-triangle objects: the whole drawn mesh costs well under a frame.
+// A geometry kept by MeshBuffers has a SlotRayTree (slot-ray-tree.js) over its face slots, refitted
+// from the slots each frame changed, so a ray costs the boxes it passes, not the mesh; without one
+// every face slot is tested. Both find the same hit (the tests compare them on random rays).
+// Deleted slots are (0,0,0) triangles and never hit.
 import * as THREE from 'three';
+import { intersectSlot } from './slot-ray-tree.js';
 
-const EPS = 1e-12;
+const trees = new WeakMap(); // geometry -> SlotRayTree (MeshBuffers registers its own)
+
+// The tree that follows `geometry` (MeshBuffers keeps it in step with the buffers).
+export function attachRayTree(geometry, tree) {
+  trees.set(geometry, tree);
+}
 
 // geometry: the MeshBuffers geometry (position, normal, index; drawRange = the live face slots).
-// Returns {point, normal, distance} of the nearest hit in front of the ray origin, or null. The
-// normal is the interpolated vertex normal (falls back to the face normal), turned towards the ray.
-export function raycastSurface(geometry, ray) {
+// Returns {point, normal, distance, face} of the nearest hit in front of the ray origin, or null.
+// The normal is the interpolated vertex normal (falls back to the face normal), turned towards
+// the ray. bruteForce: test every slot even when the geometry has a tree (tests, benchmarks).
+export function raycastSurface(geometry, ray, { bruteForce = false } = {}) {
   if (!geometry || !geometry.index || !geometry.attributes.position) return null;
   const p = geometry.attributes.position.array;
-  const nrm = geometry.attributes.normal ? geometry.attributes.normal.array : null;
   const idx = geometry.index.array;
   const count = Math.min(idx.length, Number.isFinite(geometry.drawRange.count) ? geometry.drawRange.count : idx.length);
-  const ox = ray.origin.x, oy = ray.origin.y, oz = ray.origin.z;
-  const dx = ray.direction.x, dy = ray.direction.y, dz = ray.direction.z;
-  let best = Infinity, bestFace = -1, bestU = 0, bestV = 0;
-  for (let f = 0; f + 2 < count; f += 3) {
-    const a = 3 * idx[f], b = 3 * idx[f + 1], c = 3 * idx[f + 2];
-    if (a === b) continue; // a deleted slot
-    const ax = p[a], ay = p[a + 1], az = p[a + 2];
-    const e1x = p[b] - ax, e1y = p[b + 1] - ay, e1z = p[b + 2] - az;
-    const e2x = p[c] - ax, e2y = p[c + 1] - ay, e2z = p[c + 2] - az;
-    // Möller–Trumbore, both sides.
-    const px = dy * e2z - dz * e2y, py = dz * e2x - dx * e2z, pz = dx * e2y - dy * e2x;
-    const det = e1x * px + e1y * py + e1z * pz;
-    if (det > -EPS && det < EPS) continue;
-    const inv = 1 / det;
-    const tx = ox - ax, ty = oy - ay, tz = oz - az;
-    const u = (tx * px + ty * py + tz * pz) * inv;
-    if (u < 0 || u > 1) continue;
-    const qx = ty * e1z - tz * e1y, qy = tz * e1x - tx * e1z, qz = tx * e1y - ty * e1x;
-    const v = (dx * qx + dy * qy + dz * qz) * inv;
-    if (v < 0 || u + v > 1) continue;
-    const t = (e2x * qx + e2y * qy + e2z * qz) * inv;
+  const faceCount = Math.floor(count / 3);
+  const r = {
+    ox: ray.origin.x, oy: ray.origin.y, oz: ray.origin.z,
+    dx: ray.direction.x, dy: ray.direction.y, dz: ray.direction.z,
+  };
+  const tree = bruteForce ? null : trees.get(geometry);
+  let hit;
+  if (tree && tree.capacity * 3 === idx.length) {
+    tree.update(p, idx, faceCount);
+    hit = tree.raycast(p, idx, faceCount, r);
+  } else {
+    hit = bruteForceHit(p, idx, faceCount, r);
+  }
+  if (!hit) return null;
+  const point = new THREE.Vector3(r.ox + r.dx * hit.t, r.oy + r.dy * hit.t, r.oz + r.dz * hit.t);
+  const nrm = geometry.attributes.normal ? geometry.attributes.normal.array : null;
+  const normal = hitNormal(p, nrm, idx, 3 * hit.face, hit.u, hit.v);
+  if (normal.x * r.dx + normal.y * r.dy + normal.z * r.dz > 0) normal.negate();
+  return { point, normal, distance: hit.t, face: hit.face };
+}
+
+// Every slot in order; the first of equally near hits wins (as in the tree).
+function bruteForceHit(p, idx, faceCount, r) {
+  const uv = new Float64Array(2);
+  let best = Infinity, face = -1, u = 0, v = 0;
+  for (let f = 0; f < faceCount; f++) {
+    const t = intersectSlot(p, idx, f, r, uv);
     if (t > 0 && t < best) {
       best = t;
-      bestFace = f;
-      bestU = u;
-      bestV = v;
+      face = f;
+      u = uv[0];
+      v = uv[1];
     }
   }
-  if (bestFace < 0) return null;
-  const point = new THREE.Vector3(ox + dx * best, oy + dy * best, oz + dz * best);
-  const normal = hitNormal(p, nrm, idx, bestFace, bestU, bestV);
-  if (normal.x * dx + normal.y * dy + normal.z * dz > 0) normal.negate();
-  return { point, normal, distance: best };
+  return face < 0 ? null : { face, t: best, u, v };
 }
 
 function hitNormal(p, nrm, idx, f, u, v) {

@@ -431,16 +431,32 @@ class SessionHandle {
     return guarded(val::null(), [&] {
       nlohmann::json j = nlohmann::json::object();
       if (session_.has_mesh()) j = geometry::to_json(session_.quality());
-      const sculpt::FrameTimings& t = session_.last_frame();
-      j["last_frame"] = {{"roi_ms", t.roi_ms},       {"field_ms", t.field_ms},   {"refine_ms", t.refine_ms},
-                         {"deform_ms", t.deform_ms}, {"remesh_ms", t.remesh_ms}, {"total_ms", t.total_ms}};
-      j["can_undo"] = session_.can_undo();
-      j["can_redo"] = session_.can_redo();
-      if (!session_.remesh_warning().empty()) j["warning"] = session_.remesh_warning();  // last remesh hit its limit
-      return to_js(j);
+      return to_js(with_frame_and_history(j));
+    });
+  }
+  // The same keys for what a viewer shows after every stroke, kept up to date from the changes
+  // (Session::quick_quality: vertices, faces, edges, min/max angle, mean min angle, shares under 30
+  // and 10 degrees; costs what changed, not the mesh). The other quality keys are 0.
+  val quick_stats() const {
+    return guarded(val::null(), [&] {
+      nlohmann::json j = nlohmann::json::object();
+      if (session_.has_mesh()) j = geometry::to_json(session_.quick_quality());
+      return to_js(with_frame_and_history(j));
     });
   }
 
+ private:
+  nlohmann::json& with_frame_and_history(nlohmann::json& j) const {
+    const sculpt::FrameTimings& t = session_.last_frame();
+    j["last_frame"] = {{"roi_ms", t.roi_ms},       {"field_ms", t.field_ms},   {"refine_ms", t.refine_ms},
+                       {"deform_ms", t.deform_ms}, {"remesh_ms", t.remesh_ms}, {"total_ms", t.total_ms}};
+    j["can_undo"] = session_.can_undo();
+    j["can_redo"] = session_.can_redo();
+    if (!session_.remesh_warning().empty()) j["warning"] = session_.remesh_warning();  // last remesh hit its limit
+    return j;
+  }
+
+ public:
   val export_mesh(const std::string& format) const {
     return guarded(val::null(), [&] {
       std::vector<std::uint8_t> bytes = session_.export_bytes(parse_format(format));
@@ -525,6 +541,11 @@ class SessionHandle {
     r.set("normalsPtr", reinterpret_cast<std::uintptr_t>(buffers_.normals()));
     r.set("masksPtr", reinterpret_cast<std::uintptr_t>(buffers_.masks()));
     r.set("indicesPtr", reinterpret_cast<std::uintptr_t>(buffers_.indices()));
+    // The face slots whose triangle changed (web/slot-ray-tree.js refits only those), valid until
+    // the next changes(); allFacesDirty instead after a rebuild or a reallocation.
+    r.set("allFacesDirty", buffers_.all_faces_dirty());
+    r.set("dirtyFacesPtr", reinterpret_cast<std::uintptr_t>(buffers_.dirty_faces()));
+    r.set("dirtyFaceCount", double(buffers_.dirty_face_count()));
     val ms = val::object();
     ms.set("roi", t.roi_ms);
     ms.set("field", t.field_ms);
@@ -606,6 +627,7 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("canRedo", &SessionHandle::can_redo)
       .function("replay", &SessionHandle::replay)
       .function("stats", &SessionHandle::stats)
+      .function("quickStats", &SessionHandle::quick_stats)
       .function("exportMesh", &SessionHandle::export_mesh)
       .function("saveState", &SessionHandle::save_state)
       .function("saveChanges", &SessionHandle::save_changes)

@@ -303,27 +303,15 @@ TriangleTree::RayHit TriangleTree::intersect_ray(const Point& origin, const Vec3
       continue;
     }
     for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      // Moller-Trumbore without back-face culling: the sign of det only tells the side.
       const auto& c = corners_[i];
-      const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
-      const Vec3 pv = glm::cross(dir, e2);
-      const double det = glm::dot(e1, pv);
-      if (det == 0.0) continue;
-      const double inv_det = 1.0 / det;
-      const Vec3 tv = origin - c[0];
-      const double u = glm::dot(tv, pv) * inv_det;
-      if (u < 0.0 || u > 1.0) continue;
-      const Vec3 qv = glm::cross(tv, e1);
-      const double v = glm::dot(dir, qv) * inv_det;
-      if (v < 0.0 || u + v > 1.0) continue;
-      const double t = glm::dot(e2, qv) * inv_det;
-      if (t < 0.0 || t >= t_best) continue;
+      double t, u, v;
+      if (!ray_triangle(origin, dir, c[0], c[1], c[2], &t, &u, &v) || t >= t_best) continue;
       t_best = t;
       best.hit = true;
       best.t = t;
       best.triangle = i;
       best.bary[0] = 1.0 - u - v, best.bary[1] = u, best.bary[2] = v;
-      best.point = c[0] + u * e1 + v * e2;
+      best.point = c[0] + u * (c[1] - c[0]) + v * (c[2] - c[0]);
     }
   }
   return best;

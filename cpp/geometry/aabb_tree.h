@@ -12,10 +12,32 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "mesh/surface_mesh.h"
 #include "mesh/types.h"
 
 namespace adasculpt::geometry {
+
+// Moller-Trumbore without back-face culling (the sign of det only tells the side): true when the
+// ray origin + t * dir meets triangle (a, b, c) at t >= 0, with *t and the barycentrics u, v of
+// b and c (the point is a + u (b - a) + v (c - a)). Shared by the trees' ray queries.
+inline bool ray_triangle(const Point& origin, const Vec3& dir, const Point& a, const Point& b, const Point& c,
+                         double* t, double* u, double* v) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 pv = glm::cross(dir, e2);
+  const double det = glm::dot(e1, pv);
+  if (det == 0.0) return false;
+  const double inv_det = 1.0 / det;
+  const Vec3 tv = origin - a;
+  *u = glm::dot(tv, pv) * inv_det;
+  if (*u < 0.0 || *u > 1.0) return false;
+  const Vec3 qv = glm::cross(tv, e1);
+  *v = glm::dot(dir, qv) * inv_det;
+  if (*v < 0.0 || *u + *v > 1.0) return false;
+  *t = glm::dot(e2, qv) * inv_det;
+  return *t >= 0.0;
+}
 
 class TriangleTree {
  public:

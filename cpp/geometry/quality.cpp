@@ -23,15 +23,10 @@ void angle_figures(const mesh::SurfaceMesh& mesh, QualityReport& r) {
   for (mesh::Face f : mesh.faces()) {
     mesh::Vertex v[3];
     mesh.face_vertices(f, v);
-    const Point &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
-    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    const TriangleAngles t = triangle_angle_extremes(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2]));
+    const double area = t.area, amin = t.min_deg, amax = t.max_deg;
     r.area += area;
     if (area < degenerate_area) ++r.degenerate_faces;
-    double ang[3];
-    triangle_angles(a, b, c, ang);
-    double amin = std::min({ang[0], ang[1], ang[2]}) * kRadToDeg;
-    double amax = std::max({ang[0], ang[1], ang[2]}) * kRadToDeg;
-    if (area == 0) amin = 0, amax = 180;  // coincident corners have no meaningful angles
     sum_min += amin;
     lo = std::min(lo, amin);
     hi = std::max(hi, amax);
@@ -82,6 +77,21 @@ void edge_figures(const mesh::SurfaceMesh& mesh, QualityReport& r) {
 }
 
 }  // namespace
+
+TriangleAngles triangle_angle_extremes(const Point& a, const Point& b, const Point& c) {
+  TriangleAngles t;
+  t.area = 0.5 * glm::length(glm::cross(b - a, c - a));
+  if (t.area == 0) {  // coincident corners have no meaningful angles
+    t.min_deg = 0;
+    t.max_deg = 180;
+    return t;
+  }
+  double ang[3];
+  triangle_angles(a, b, c, ang);
+  t.min_deg = std::min({ang[0], ang[1], ang[2]}) * kRadToDeg;
+  t.max_deg = std::max({ang[0], ang[1], ang[2]}) * kRadToDeg;
+  return t;
+}
 
 QualityReport quality_report(const mesh::SurfaceMesh& mesh) {
   QualityReport r;

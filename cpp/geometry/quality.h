@@ -30,6 +30,13 @@ struct QualityReport {
 
 QualityReport quality_report(const mesh::SurfaceMesh& mesh);
 
+// One triangle's share of the angle figures: its smallest and largest angle in degrees (0 and 180
+// for a zero-area triangle) and its area.
+struct TriangleAngles {
+  double min_deg = 0, max_deg = 0, area = 0;
+};
+TriangleAngles triangle_angle_extremes(const Point& a, const Point& b, const Point& c);
+
 // Symmetric sampled distance between two surfaces: the max of both directions.
 struct DistanceReport {
   double rms = 0, hausdorff = 0;

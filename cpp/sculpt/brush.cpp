@@ -187,7 +187,7 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
     Point c0;
     seed_ = locate_by_walking(mesh, last_stroke_seed_, p, &c0);
     const bool walked = seed_.is_valid();
-    if (!walked) seed_ = locate(mesh, p, &c0);
+    if (!walked) seed_ = locator_ ? locator_(mesh, p, &c0) : locate(mesh, p, &c0);
     if (start_hook_) start_hook_(mesh, seed_, walked);
     if (symmetric()) {
       // An exactly symmetric mesh stays so, vertex for vertex: the remesher pairs its operations
@@ -196,7 +196,7 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
         mirror_seed_ = (*remesher.mirror_map())[seed_.idx];
       } else {
         Point unused;
-        mirror_seed_ = locate(mesh, mirror(c0), &unused);
+        mirror_seed_ = locator_ ? locator_(mesh, mirror(c0), &unused) : locate(mesh, mirror(c0), &unused);
       }
     }
     frame.locate_ms += ms_between(t0, Clock::now());

@@ -55,6 +55,10 @@ void RenderChanges::everything(std::uint32_t vertices, std::uint32_t faces) {
 }
 
 RenderChanges RenderBuffers::take_pending() {
+  taken_dirty_faces_.swap(dirty_faces_);  // both keep their capacity: no allocation per frame
+  dirty_faces_.clear();
+  taken_all_dirty_ = all_dirty_;
+  all_dirty_ = false;
   RenderChanges out = pending_;
   pending_ = RenderChanges{};
   pending_.vertex_count = vertex_count_;
@@ -85,6 +89,18 @@ void RenderBuffers::mark_normal(Vertex v) {
   if (stamp_[v.idx] == epoch_) return;
   stamp_[v.idx] = epoch_;
   normal_queue_.push_back(v);
+}
+
+void RenderBuffers::mark_face_dirty(std::uint32_t slot) {
+  if (all_dirty_) return;
+  // A reader that never takes the list (the CLI, most tests) must not grow it without bound: past
+  // the slot count, "all of them" says as much.
+  if (dirty_faces_.size() >= std::max<size_t>(face_count_, 1024)) {
+    all_dirty_ = true;
+    dirty_faces_.clear();
+    return;
+  }
+  dirty_faces_.push_back(slot);
 }
 
 void RenderBuffers::write_position(const SurfaceMesh& m, Vertex v) {
@@ -177,6 +193,8 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
   work_ = size_t(nv) + nf;
   last_.rebuilt = true;
   last_.everything(nv, nf);
+  all_dirty_ = true;
+  dirty_faces_.clear();
   pending_.merge(last_);
   return last_;
 }
@@ -203,6 +221,7 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   if (nf < face_count_) {
     work_ += face_count_ - nf;
     for (std::uint32_t i = nf; i < face_count_; ++i) {
+      mark_face_dirty(i);
       std::uint32_t* t = &indices_[3 * size_t(i)];
       for (int k = 0; k < 3; ++k)
         if ((t[0] | t[1] | t[2]) != 0 && t[k] < nv && !m.is_deleted(Vertex(t[k]))) mark_normal(Vertex(t[k]));
@@ -218,14 +237,17 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   // faces around touched vertices, the new slots and the touched faces; no walk over the slots.
   const bool faces_may_change = topology_changed || nf != face_count_ || fe > fb || n_faces > 0;
   auto face = [&](Face f) {
-    if (write_face(m, f)) extend(fb, fe, f.idx, f.idx + 1);
+    if (!write_face(m, f)) return;
+    extend(fb, fe, f.idx, f.idx + 1);
+    mark_face_dirty(f.idx);
   };
   auto moved = [&](Vertex v) {
     write_position(m, v);
     mark_normal(v);
     for (Vertex w : m.vertices(v)) mark_normal(w);
-    if (faces_may_change) {
-      for (Face f : m.faces(v)) face(f);
+    for (Face f : m.faces(v)) {
+      if (faces_may_change && write_face(m, f)) extend(fb, fe, f.idx, f.idx + 1);
+      mark_face_dirty(f.idx);  // rewritten or not, its corner moved
     }
   };
   for (size_t i = 0; i < n_touched; ++i) {
@@ -255,7 +277,11 @@ const RenderChanges& RenderBuffers::update(const SurfaceMesh& m, const Vertex* t
   last_.vertex_end = ve;
   last_.vertex_count = nv;
   last_.face_count = nf;
-  if (last_.reallocated) last_.everything(nv, nf);  // new arrays on the GPU side: upload all again
+  if (last_.reallocated) {  // new arrays on the GPU side: upload all again
+    last_.everything(nv, nf);
+    all_dirty_ = true;
+    dirty_faces_.clear();
+  }
   pending_.merge(last_);
   return last_;
 }

@@ -79,6 +79,16 @@ class RenderBuffers {
   const RenderChanges& pending() const { return pending_; }
   RenderChanges take_pending();
 
+  // The face slots whose drawn triangle may differ from the one at the previous take_pending():
+  // its corners or their positions changed (duplicates possible), so a picking structure over the
+  // slots (web/slot-ray-tree.js) refits only those. Listed by each update() as it writes them: the
+  // faces around the touched vertices, the rewritten slots and the emptied ones. all_faces_dirty()
+  // instead when a rebuild, a reallocation or a list longer than the slots made them all dirty.
+  // take_pending() hands them over: valid until the next take_pending().
+  const std::uint32_t* dirty_faces() const { return taken_dirty_faces_.data(); }
+  size_t dirty_face_count() const { return taken_dirty_faces_.size(); }
+  bool all_faces_dirty() const { return taken_all_dirty_; }
+
   const float* positions() const { return positions_.data(); }  // xyz per vertex slot
   const float* normals() const { return normals_.data(); }      // xyz per vertex slot, unit length
   const std::uint32_t* indices() const { return indices_.data(); }  // 3 per face slot
@@ -107,6 +117,9 @@ class RenderBuffers {
   std::uint32_t epoch_ = 0;
   std::vector<mesh::Vertex> normal_queue_;
   RenderChanges last_, pending_;
+  void mark_face_dirty(std::uint32_t slot);
+  std::vector<std::uint32_t> dirty_faces_, taken_dirty_faces_;  // pending, and handed over
+  bool all_dirty_ = true, taken_all_dirty_ = true;
 };
 
 }  // namespace adasculpt::sculpt

@@ -13,7 +13,8 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "geometry/aabb_tree.h"
+#include "geometry/angle_figures.h"
+#include "geometry/face_slot_tree.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
 #include "mesh/flat_walk.h"
@@ -101,8 +102,14 @@ struct Session::Impl {
     last = FrameTimings{};
   }
 
-  mutable geometry::TriangleTree tree;  // of the current surface, built on demand
-  mutable bool tree_valid = false;
+  // Picking, a grab's press, a stroke's start and the mask brush find the surface through boxes
+  // over the face slots that follow the changes (face_slot_tree.h): built with each new mesh, then
+  // refitted where strokes, grabs, undo and redo changed it. The changes reach it from `changes`
+  // (noted_* say how much of its lists it has seen), so clear_changes() notes them first.
+  mutable geometry::FaceSlotTree slot_tree;
+  // The stats shown after every stroke (quick_quality), kept from the same changes.
+  mutable geometry::AngleFigures angle_figures;
+  mutable size_t noted_vertices = 0, noted_faces = 0;
 
   FrameTimings last;
   std::string remesh_warning;  // of the last whole-mesh remesh(); empty when it was within its budget
@@ -174,18 +181,53 @@ struct Session::Impl {
       remesher_kept = true;
     }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
-    tree_valid = false;
+    // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
+    // at the first stroke or press after the load, where it would be a hitch.
+    slot_tree.invalidate();
+    slot_tree.sync(mesh);
+    angle_figures.invalidate();
     changes.everything = true;
     changes.topology_changed = true;
     changes.touched_vertices.clear();
     changes.touched_faces.clear();
+    noted_vertices = noted_faces = 0;
   }
-  const geometry::TriangleTree& surface_tree() const {
-    if (!tree_valid) {
-      tree.build(mesh);
-      tree_valid = true;
+  // Hands the changes made since the last call to the slot tree and the angle figures (they mark
+  // what to refit or recompute at their next sync).
+  void note_changes() const {
+    const auto& tv = changes.touched_vertices;
+    const auto& tf = changes.touched_faces;
+    for (size_t i = std::min(noted_vertices, tv.size()); i < tv.size(); ++i) {
+      slot_tree.mark_vertex(mesh, tv[i]);
+      angle_figures.mark_vertex(mesh, tv[i]);
     }
-    return tree;
+    for (size_t i = std::min(noted_faces, tf.size()); i < tf.size(); ++i) {
+      slot_tree.mark_face(tf[i]);
+      angle_figures.mark_face(tf[i]);
+    }
+    noted_vertices = tv.size();
+    noted_faces = tf.size();
+  }
+  const geometry::FaceSlotTree& surface() const {
+    note_changes();
+    slot_tree.sync(mesh);
+    return slot_tree;
+  }
+  // The surface point nearest q (exact) and its face; throws without a face.
+  geometry::FaceSlotTree::Hit closest_on_surface(const Point& q, const char* what) const {
+    const geometry::FaceSlotTree::Hit hit = surface().closest_point(mesh, q);
+    if (!hit.face.is_valid()) throw std::invalid_argument(std::string(what) + ": the mesh has no face");
+    return hit;
+  }
+  // A grab's press or a stroke's start: the surface point nearest `center` and the vertex nearest
+  // that point (as sculpt::locate_on_surface, which scanned every vertex).
+  mesh::Vertex locate_press(const Point& center, Point* picked, const char* what = "grab") const {
+    const geometry::FaceSlotTree::Hit hit = closest_on_surface(center, what);
+    mesh::Vertex corners[3];
+    mesh.face_vertices(hit.face, corners);
+    const int k = int(std::max_element(hit.bary, hit.bary + 3) - hit.bary);
+    *picked = hit.point;
+    return deform::walk_to_nearest_vertex(mesh, corners[k], hit.point);
   }
   StateSettings state_settings() const {
     return {options.epsilon, options.min_length, options.max_length, options.feature_angle_deg, diagonal};
@@ -242,14 +284,12 @@ struct Session::Impl {
     } else if (grabbing || brushing) {
       drop_remesher();
     }  // (a mask stroke changes no geometry: a kept remesher and the surface tree stay valid)
-    const bool geometry_changed = grabbing || brushing;
     grabbing = brushing = masking = false;
     // The step is recorded from the slots around what it touched (no pass over the mesh). The
     // mesh is not compacted here: the history refers to slots, and deleted slots stay until a
     // whole-mesh step (load, restore, remesh) starts the numbering over. Every reader skips them
     // (the render buffers draw them as empty triangles).
     commit_step();
-    if (geometry_changed) tree_valid = false;
   }
   bool step_history(bool back) {
     end_grab();
@@ -267,7 +307,6 @@ struct Session::Impl {
     } else {
       drop_remesher();  // its arrays were not logged: the slots the step brought back hold defaults
       component_diagonal = 0;
-      tree_valid = false;
       changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
     }
@@ -278,6 +317,9 @@ struct Session::Impl {
 Session::Session() : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.brush.set_start_hook([&s](const mesh::SurfaceMesh&, mesh::Vertex seed, bool walked) { s.start_stroke(seed, walked); });
+  s.brush.set_locator([&s](const mesh::SurfaceMesh&, const Point& p, Point* on_surface) {
+    return s.locate_press(p, on_surface, "brush");
+  });
 }
 Session::~Session() = default;
 
@@ -338,11 +380,9 @@ nlohmann::json Session::settings() const {
 
 bool Session::pick(const Point& origin, const Vec3& dir, Point* hit) const {
   if (!impl_->has_mesh || !(glm::length(dir) > 0)) return false;
-  const geometry::TriangleTree& tree = impl_->surface_tree();
-  if (tree.empty()) return false;
-  const auto h = tree.intersect_ray(origin, dir);
-  if (h.hit && hit) *hit = h.point;
-  return h.hit;
+  const auto h = impl_->surface().intersect_ray(impl_->mesh, origin, dir);
+  if (h.face.is_valid() && hit) *hit = h.point;
+  return h.face.is_valid();
 }
 
 void Session::grab_begin(const Point& center, double handle_radius, double roi_radius) {
@@ -353,16 +393,11 @@ void Session::grab_begin(const Point& center, double handle_radius, double roi_r
   if (!(roi_radius > 0) || !std::isfinite(roi_radius))
     throw std::invalid_argument("grab: 'roi_radius' must be a positive number");
   s.end_grab();
-  // The press is not a frame, but it should not cost the mesh either: a scan of the vertices
-  // finds the picked point (building the AABB tree for it took 70 ms on the dragon, 1 s at 2M
-  // triangles, at every press, since each grab invalidates it).
+  // The press is not a frame, but it should not cost the mesh either: the slot tree follows the
+  // strokes and grabs (the vertex scan it replaces took 130 ms at 1.1M triangles; rebuilding an
+  // AABB tree, 1 s at 2M triangles, at every press).
   Point picked;
-  mesh::Vertex near;
-  try {
-    near = locate_on_surface(s.mesh, center, &picked);
-  } catch (const std::invalid_argument&) {
-    throw std::invalid_argument("grab: the mesh has no face");
-  }
+  const mesh::Vertex near = s.locate_press(center, &picked);
   mesh::Face picked_face;  // a face at the vertex: the deformer's seed is the corner nearest the point
   for (mesh::Face f : s.mesh.faces(near)) {
     picked_face = f;
@@ -378,7 +413,6 @@ void Session::grab_drag(const deform::HandleTransform& total) {
   Impl& s = *impl_;
   if (!s.grabbing) throw std::logic_error("grab_drag: no grab in progress (call grab_begin first)");
   s.grab.drag(s.mesh, *s.remesher, total, s.options.epsilon, s.last, s.changes);
-  s.tree_valid = false;
 }
 
 deform::DeformOptions& Session::grab_options() { return impl_->grab.options(); }
@@ -405,11 +439,11 @@ void Session::brush_stamp(const Point& p, double pressure) {
   if (!s.brushing) throw std::logic_error("brush_stamp: no stroke in progress (call brush_begin first)");
   const auto t0 = Clock::now();
   BrushFrame frame;
+  s.note_changes();  // the stroke's locator syncs the slot tree while the list below is swapped out
   frame.touched.swap(s.changes.touched_vertices);  // appends without copying
   s.brush.sample(s.mesh, *s.remesher, p, pressure, frame);
   frame.touched.swap(s.changes.touched_vertices);
   if (frame.topology_changed) s.changes.topology_changed = true;
-  if (frame.stamps > 0) s.tree_valid = false;
   FrameTimings& f = s.last;
   f = FrameTimings{};
   f.roi_ms = frame.locate_ms;
@@ -470,12 +504,11 @@ void Session::mask_stamp(const Point& p) {
   if (!s.masking) throw std::logic_error("mask_stamp: no mask stroke in progress (call mask_begin first)");
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
     throw std::invalid_argument("mask: 'path' must hold finite points");
-  const geometry::TriangleTree& tree = s.surface_tree();
   auto locate = [&](const Point& q) {
-    if (tree.empty()) return mesh::Vertex();
-    const geometry::TriangleTree::ClosestHit hit = tree.closest_point(q);
+    const geometry::FaceSlotTree::Hit hit = s.surface().closest_point(s.mesh, q);
+    if (!hit.face.is_valid()) return mesh::Vertex();
     mesh::Vertex corners[3];
-    s.mesh.face_vertices(tree.face_of(hit.triangle), corners);
+    s.mesh.face_vertices(hit.face, corners);
     return deform::walk_to_nearest_vertex(s.mesh, corners[0], q);
   };
   s.mask_painter.add_point(s.mesh, p, locate, s.changes.touched_vertices);
@@ -601,6 +634,18 @@ geometry::QualityReport Session::quality() const {
   impl_->require_mesh("quality");
   return geometry::quality_report(impl_->mesh);
 }
+
+geometry::QualityReport Session::quick_quality() const {
+  const Impl& s = *impl_;
+  s.require_mesh("quality");
+  s.note_changes();
+  s.angle_figures.sync(s.mesh);
+  geometry::QualityReport r;
+  r.vertices = s.mesh.n_vertices();
+  r.edges = s.mesh.n_edges();
+  s.angle_figures.fill(r);
+  return r;
+}
 const FrameTimings& Session::last_frame() const { return impl_->last; }
 
 const std::string& Session::remesh_warning() const { return impl_->remesh_warning; }
@@ -608,6 +653,8 @@ const ChangeSet& Session::changes() const { return impl_->changes; }
 void Session::clear_changes() {
   Impl& s = *impl_;
   if (s.grabbing || s.brushing || s.masking) s.move_step_touched();  // the step in progress still needs them when it ends
+  s.note_changes();
+  s.noted_vertices = s.noted_faces = 0;
   impl_->changes.topology_changed = false;
   impl_->changes.everything = false;
   impl_->changes.touched_vertices.clear();

@@ -21,11 +21,14 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/aabb_tree.h"
+#include "geometry/quality.h"
 #include "io/load_mesh.h"
 #include "io/mesh_io.h"
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "sculpt/brush.h"
 #include "sculpt/render_buffers.h"
 #include "sculpt/session.h"
 
@@ -125,6 +128,13 @@ void stroke_with_frames(sculpt::Session& s, sculpt::RenderBuffers& rb, const scu
   viewer_frame(s, rb);
 }
 
+// The scenes' 12 short strokes (4 stamps' worth of path each) on the first copy.
+std::vector<sculpt::BrushStroke> twelve_short_strokes(const mesh::SurfaceMesh& m) {
+  std::vector<sculpt::BrushStroke> strokes;
+  for (int k = 0; k < 12; ++k) strokes.push_back(make_stroke(m, k, 4));
+  return strokes;
+}
+
 double percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0 : v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
@@ -134,8 +144,7 @@ double percentile(std::vector<double> v, double p) {
 void BM_StrokeScaling(benchmark::State& state) {
   const int copies = int(state.range(0));
   const mesh::SurfaceMesh m = scene(copies);
-  std::vector<sculpt::BrushStroke> strokes;
-  for (int k = 0; k < 12; ++k) strokes.push_back(make_stroke(m, k, 4));
+  const std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
   std::vector<double> beyond, stroke_ms, later_stroke_ms, first_stroke_ms, undo_ms, redo_ms, step_bytes;
   for (auto _ : state) {
     state.PauseTiming();
@@ -190,6 +199,84 @@ void BM_StrokeScaling(benchmark::State& state) {
               percentile(redo_ms, 0.5), percentile(step_bytes, 0.5) / (1 << 20));
 }
 BENCHMARK(BM_StrokeScaling)->Arg(1)->Arg(4)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// What the app does around each stroke besides the stamps: the Pull's press picks the surface
+// (Session::pick) and starts a grab there (grab_begin, whose locate found the point), and the stats
+// box reads its figures (Session::quick_quality). Medians per stroke on 1 and 16 copies, next to the
+// whole-mesh ways they replaced, timed on the same meshes: a TriangleTree built for one ray (the old
+// Session::pick after every stroke), the vertex scan of sculpt::locate_on_surface (the old
+// grab_begin) and quality_report (the old stats after every stroke). Also the first stroke after
+// an undo against the strokes after it.
+void BM_StrokeScalingInteractive(benchmark::State& state) {
+  const int copies = int(state.range(0));
+  const mesh::SurfaceMesh m = scene(copies);
+  const std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
+  std::vector<double> stroke_ms, pick_ms, press_ms, stats_ms, old_pick_ms, old_press_ms, old_stats_ms;
+  std::vector<double> after_undo_ms, later_ms;
+  for (auto _ : state) {
+    sculpt::Session s;
+    s.load(m);
+    set_bunny_detail(s);
+    sculpt::RenderBuffers rb;
+    viewer_frame(s, rb);
+    for (size_t k = 0; k < strokes.size(); ++k) {
+      auto t = Clock::now();
+      stroke_with_frames(s, rb, strokes[k]);
+      (k == 0 ? stroke_ms : later_ms).push_back(ms_since(t));
+      if (k > 0) stroke_ms.push_back(later_ms.back());
+      const Point target = strokes[k].path.back();
+      const Point eye = target + Vec3(0, 0, 2 * bunny_diagonal());
+      Point hit;
+      t = Clock::now();
+      const bool picked = s.pick(eye, target - eye, &hit);
+      pick_ms.push_back(ms_since(t));
+      t = Clock::now();
+      s.grab_begin(picked ? hit : target, 0.01 * bunny_diagonal(), 0.05 * bunny_diagonal());
+      s.grab_end();
+      viewer_frame(s, rb);
+      press_ms.push_back(ms_since(t));
+      t = Clock::now();
+      benchmark::DoNotOptimize(s.quick_quality());
+      stats_ms.push_back(ms_since(t));
+      if (k % 4 == 0) {  // the whole-mesh ways, on a few strokes (they are slow)
+        t = Clock::now();
+        geometry::TriangleTree tree;
+        tree.build(s.mesh());
+        benchmark::DoNotOptimize(tree.intersect_ray(eye, target - eye));
+        old_pick_ms.push_back(ms_since(t));
+        t = Clock::now();
+        Point on;
+        benchmark::DoNotOptimize(sculpt::locate_on_surface(s.mesh(), target, &on));
+        old_press_ms.push_back(ms_since(t));
+        t = Clock::now();
+        benchmark::DoNotOptimize(geometry::quality_report(s.mesh()));
+        old_stats_ms.push_back(ms_since(t));
+      }
+      if (k % 3 == 2) {  // an undo of the press (and every third stroke's too), then the next stroke
+        s.undo();
+        viewer_frame(s, rb);
+        t = Clock::now();
+        stroke_with_frames(s, rb, strokes[(k + 5) % strokes.size()]);
+        after_undo_ms.push_back(ms_since(t));
+      }
+    }
+  }
+  const double per_stroke = percentile(stroke_ms, 0.5) + percentile(pick_ms, 0.5) + percentile(press_ms, 0.5) +
+                            percentile(stats_ms, 0.5);
+  state.counters["triangles"] = double(m.n_faces());
+  state.counters["stroke_with_pick_press_stats_ms"] = per_stroke;
+  state.counters["pick_ms"] = percentile(pick_ms, 0.5);
+  state.counters["press_ms"] = percentile(press_ms, 0.5);
+  state.counters["stats_ms"] = percentile(stats_ms, 0.5);
+  std::printf("stroke-scaling interactive copies=%d triangles=%zu stroke_ms=%.2f pick_ms=%.3f press_ms=%.3f "
+              "stats_ms=%.3f total_per_stroke_ms=%.2f | whole-mesh ways: tree_build_pick_ms=%.1f locate_scan_ms=%.2f "
+              "quality_report_ms=%.1f | first_stroke_after_undo_ms=%.2f later_strokes_ms=%.2f first_stroke_ms=%.2f\n",
+              copies, m.n_faces(), percentile(stroke_ms, 0.5), percentile(pick_ms, 0.5), percentile(press_ms, 0.5),
+              percentile(stats_ms, 0.5), per_stroke, percentile(old_pick_ms, 0.5), percentile(old_press_ms, 0.5),
+              percentile(old_stats_ms, 0.5), percentile(after_undo_ms, 0.5), percentile(later_ms, 0.5),
+              stroke_ms.empty() ? 0.0 : stroke_ms.front());
+}
+BENCHMARK(BM_StrokeScalingInteractive)->Arg(1)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // One 30-stamp stroke's undo step, and 64 of them on the 16-copy scene (the history budget is
 // Session::kMaxUndoBytes = 512 MB: a step that does not fit drops the oldest).

@@ -1,6 +1,6 @@
 // RenderBuffers driven by a Session, frame by frame as the viewer does: after random strokes,
 // grabs, undos and redos (splits, collapses and flips every frame) the incremental buffers equal
-// a full rebuild, and a frame's update costs its change, not the mesh: the same stroke on 1 and
+// a full rebuild and every face slot whose triangle changed is in the update's dirty list, and a frame's update costs its change, not the mesh: the same stroke on 1 and
 // 16 copies of a sphere does the same buffer work.
 #include <gtest/gtest.h>
 
@@ -44,13 +44,49 @@ struct Bounds {
   }
 };
 
-// The viewer's frame: upload what changed, forget it. Returns the update's work.
+// The triangle each face slot draws (its corners' positions; zeros for an empty slot), as a picking
+// structure over the slots sees it.
+std::vector<float> drawn_triangles(const sculpt::RenderBuffers& rb, std::uint32_t slots) {
+  std::vector<float> out(9 * size_t(slots), 0.0f);
+  for (std::uint32_t f = 0; f < std::min(slots, rb.face_count()); ++f) {
+    const std::uint32_t* t = rb.indices() + 3 * size_t(f);
+    if (t[0] == t[1]) continue;
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) out[9 * size_t(f) + 3 * c + k] = rb.positions()[3 * size_t(t[c]) + k];
+  }
+  return out;
+}
+
+// Every face slot whose drawn triangle changed is in the handed-over dirty list (or all are dirty).
+size_t frames_with_dirty_list = 0;  // checked frames that listed slots (not "all dirty")
+void expect_dirty_faces_cover(const std::vector<float>& before, const std::vector<float>& after,
+                              const sculpt::RenderBuffers& rb) {
+  if (rb.all_faces_dirty()) return;
+  if (rb.dirty_face_count() > 0) ++frames_with_dirty_list;
+  std::vector<bool> listed(after.size() / 9, false);
+  for (size_t i = 0; i < rb.dirty_face_count(); ++i)
+    if (rb.dirty_faces()[i] < listed.size()) listed[rb.dirty_faces()[i]] = true;
+  for (size_t f = 0; f < listed.size(); ++f)
+    for (int k = 0; k < 9; ++k)
+      if (before[9 * f + k] != after[9 * f + k]) {
+        ASSERT_TRUE(listed[f]) << "face slot " << f << " changed but is not in the dirty list";
+        break;
+      }
+}
+
+// The viewer's frame: upload what changed, forget it. Returns the update's work. With `dirty`, also
+// checks the update's list of dirty face slots against the drawn triangles before and after (a
+// pass over the slots: tests only).
 size_t frame(sculpt::Session& s, sculpt::RenderBuffers& rb, size_t* deleted_faces = nullptr,
-             Bounds* bounds = nullptr) {
+             Bounds* bounds = nullptr, bool dirty = false) {
   if (deleted_faces) *deleted_faces += s.changes().touched_faces.size();
+  const std::uint32_t slots = std::max<std::uint32_t>(rb.face_count(), std::uint32_t(s.mesh().faces_size()));
+  const std::vector<float> before = dirty ? drawn_triangles(rb, slots) : std::vector<float>();
   rb.update(s.mesh(), s.changes());
   s.clear_changes();
-  if (bounds) bounds->grow(rb.take_pending());
+  const sculpt::RenderChanges c = rb.take_pending();
+  if (bounds) bounds->grow(c);
+  if (dirty) expect_dirty_faces_cover(before, drawn_triangles(rb, slots), rb);
   return rb.last_work();
 }
 
@@ -72,7 +108,7 @@ size_t stroke_frames(sculpt::Session& s, sculpt::RenderBuffers& rb, const sculpt
   s.brush_begin(st.settings);
   for (const Point& p : st.path) {
     s.brush_stamp(p);
-    work += frame(s, rb, deleted_faces, bounds);
+    work += frame(s, rb, deleted_faces, bounds, bounds != nullptr);
     expect_matches_rebuild(s.mesh(), rb, where);
   }
   s.brush_end();
@@ -115,7 +151,7 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
         deform::HandleTransform t;
         t.translation = (i / 4.0) * pull;
         s.grab_drag(t);
-        frame(s, rb, &deleted_faces, &bounds);
+        frame(s, rb, &deleted_faces, &bounds, true);
         expect_matches_rebuild(s.mesh(), rb, "grab frame");
       }
       s.grab_end();
@@ -124,10 +160,10 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
     } else if (kind < 9) {
       undos += s.undo() ? 1 : 0;
       EXPECT_FALSE(s.changes().everything) << "a stroke's undo is incremental";
-      frame(s, rb, &deleted_faces, &bounds);
+      frame(s, rb, &deleted_faces, &bounds, true);
     } else {
       redos += s.redo() ? 1 : 0;
-      frame(s, rb, &deleted_faces, &bounds);
+      frame(s, rb, &deleted_faces, &bounds, true);
     }
     expect_matches_rebuild(s.mesh(), rb, at.c_str());
     bounds.expect_holds(s.mesh(), rb);
@@ -139,6 +175,7 @@ TEST(RenderBuffersSession, RandomStrokesGrabsUndosMatchRebuildEveryFrame) {
   EXPECT_GT(undos, 5);
   EXPECT_GT(redos, 3);
   EXPECT_GT(grabs, 5);
+  EXPECT_GT(frames_with_dirty_list, 200u);  // the list, not "all dirty", was checked
 }
 
 // The counter behind "O(changed faces), not O(face slots)": the same stroke, undo and redo on the
