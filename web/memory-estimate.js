@@ -5,7 +5,9 @@
 // then sculpting a mesh of F triangles needed at most BYTES_PER_FACE × F bytes of wasm heap
 // (measured with the wasm module in node on 0.18M–3.9M-triangle grids: 230–290 bytes/face after
 // the load, 470–610 after the first grab, which adds the undo snapshot, the remesher's and the
-// deformer's state and the AABB tree; the heap grows in ~20 % steps, so these are upper bounds),
+// deformer's state and the AABB tree; the heap grows in ~20 % steps, so these are upper bounds;
+// re-measured with the picking tree and kept angle figures by `bash scripts/bench-memory-wasm.sh`
+// on 0.2M–2M-triangle tori: 275–309 after the load, 507–539 after a grab and a stroke),
 // plus the file itself, which is copied into wasm memory to be parsed. The current mesh and its
 // history stay in memory until the new mesh has loaded, so they are subtracted from the limit.
 export const MAX_WASM_BYTES = 2048 * 1024 * 1024;

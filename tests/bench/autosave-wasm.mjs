@@ -7,6 +7,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
+import { torusArrays } from './torus.mjs';
 
 const require = createRequire(import.meta.url);
 const { loadModule, skip, root } = require('../js/wasm-module.cjs');
@@ -31,20 +32,11 @@ function strokePath(pos, seed, step, n) {
   return Float64Array.from(out);
 }
 
-// A torus (radii 1 and 0.3) of about `faces` triangles.
+// A torus of about `faces` triangles loaded into the session; returns its name.
 function loadTorus(s, faces) {
-  const n = Math.round(Math.sqrt(faces / 2) * 1.5), m = Math.round(faces / 2 / n);
-  const p = new Float64Array(3 * n * m), t = new Uint32Array(6 * n * m);
-  for (let i = 0; i < n; i++) {
-    for (let j = 0; j < m; j++) {
-      const u = (2 * Math.PI * i) / n, v = (2 * Math.PI * j) / m, r = 1 + 0.3 * Math.cos(v), k = i * m + j;
-      p.set([r * Math.cos(u), r * Math.sin(u), 0.3 * Math.sin(v)], 3 * k);
-      const a = k, b = ((i + 1) % n) * m + j, c = ((i + 1) % n) * m + ((j + 1) % m), d = i * m + ((j + 1) % m);
-      t.set([a, b, c, a, c, d], 6 * k);
-    }
-  }
+  const { p, t } = torusArrays(faces);
   s.loadArrays(p, t);
-  return `torus-${2 * n * m}`;
+  return `torus-${t.length / 3}`;
 }
 
 async function main() {
