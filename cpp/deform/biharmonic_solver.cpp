@@ -36,6 +36,7 @@ struct BiharmonicSolver::Impl {
   std::vector<Eigen::Triplet<double>> triplets;
   BiharmonicStats stats;
   std::unique_ptr<AmortizedLdlt> amortized;
+  double amortized_work = 0;  // of the last advance_amortized()
 
   bool same_pattern(const SpMat& a) const {
     if (!has_pattern || a.rows() + 1 != static_cast<Eigen::Index>(outer.size())) return false;
@@ -351,6 +352,7 @@ void BiharmonicSolver::begin_amortized(const BiharmonicSystem& system) {
 // Work is counted in multiply-adds (estimated for the steps that run in one piece), not in time,
 // so that a grab gives the same result on every machine and in WebAssembly (replays are exact).
 bool BiharmonicSolver::advance_amortized(double work_budget) {
+  impl_->amortized_work = 0;
   if (!impl_->amortized) return false;
   AmortizedLdlt& j = *impl_->amortized;
   double used = 0;
@@ -401,8 +403,11 @@ bool BiharmonicSolver::advance_amortized(double work_budget) {
     j.stage = AmortizedLdlt::kIdle;
     throw;
   }
+  impl_->amortized_work = used;
   return j.stage == AmortizedLdlt::kDone;
 }
+
+double BiharmonicSolver::amortized_work_done() const { return impl_->amortized_work; }
 
 bool BiharmonicSolver::amortized_running() const {
   return impl_->amortized && impl_->amortized->stage != AmortizedLdlt::kIdle &&

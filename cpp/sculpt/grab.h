@@ -13,6 +13,24 @@
 
 namespace adasculpt::sculpt {
 
+// The plan of a grab frame, in the field solve's unit (multiply-adds, about 10 instructions each
+// natively; counted from sizes, not timed, so that a replay does the same everywhere): the
+// refinement and the region iteration cost about region_work_per_vertex per vertex of the region,
+// a region iteration that measures the sizing again (Remesher::sizing_due, every 4th) about
+// sizing_work_per_vertex more; the field's amortised solve gets what is left of
+// DeformOptions::frame_work, at least min_field_fraction of it. Such a heavier frame also leaves
+// the field's restarts and large one-piece steps to the next frame (FieldShare).
+struct FramePlan {
+  // Calibrated with callgrind on the dragon's 10k-vertex ROI (scripts/pull-frames-callgrind.sh -v):
+  // refine + region iteration 22-24M instructions, the sizing 18-20M, for 10.5k region vertices.
+  static constexpr double kRegionWorkPerVertex = 230;
+  static constexpr double kSizingWorkPerVertex = 190;
+  static constexpr double kMinFieldFraction = 0.1;
+  double region_work = 0;  // estimated: refinement and region iteration, sizing included
+  deform::FieldShare field;
+};
+FramePlan plan_frame(size_t region_vertices, bool sizing_due, const deform::DeformOptions& options);
+
 class Grab {
  public:
   // picked: the surface point the grab holds, on face `picked_face` (a live face of mesh).
@@ -27,9 +45,12 @@ class Grab {
   // budget; they apply from the next begin().
   deform::DeformOptions& options() { return deformer_.options(); }
   const deform::HandleDeformer& deformer() const { return deformer_; }
+  // The plan of the last frame (its field share and the other work it expected).
+  const FramePlan& last_plan() const { return plan_; }
 
  private:
   deform::HandleDeformer deformer_;
+  FramePlan plan_;
 };
 
 }  // namespace adasculpt::sculpt
