@@ -429,10 +429,15 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
   const double eps2 = epsilon * epsilon;
   mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
   const Blender blend(inc);
+  // A translation (the usual drag) blends every point as x + w t, so the deviation below is
+  // exactly (w_mid - (w_a + w_b) / 2) t: no blend to evaluate (they were half of the test's
+  // instructions on the dragon pull).
+  const bool translation = blend.translates_only();
+  const double t2 = glm::dot(inc.translation, inc.translation);
   for (Vertex v : free_) {
     const Point& pv = mesh.position(v);
     const double wv = field_[v.idx];
-    const Point dv = blend(wv, center_, pv);
+    const Point dv = translation ? pv : blend(wv, center_, pv);
     for (mesh::Halfedge h : mesh.halfedges(v)) {
       const Vertex u = mesh.to_vertex(h);
       const Category cu = category(u);
@@ -442,6 +447,11 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
       if (mesh::fully_masked(mask, v) || mesh::fully_masked(mask, u)) continue;
       const Point& pu = mesh.position(u);
       const double wu = field_[u.idx];
+      if (translation) {
+        const double dw = midpoint_field(v, u, pv, pu) - 0.5 * (wv + wu);
+        if (dw * dw * t2 > eps2) split_edges_.push_back(mesh.edge(h));
+        continue;
+      }
       const Point mid_of_deformed = 0.5 * (dv + blend(wu, center_, pu));
       const Point deformed_mid = blend(midpoint_field(v, u, pv, pu), center_, 0.5 * (pu + pv));
       const Vec3 dev = deformed_mid - mid_of_deformed;

@@ -60,9 +60,9 @@ struct DeformOptions {
   double field_work_per_frame = 3e6;
   // Carried, in a grab (sculpt/grab.h): the work of a whole frame in the same unit. The field's
   // share is what the frame's refinement and region iteration (estimated from the region's size)
-  // leave of it, so that heavy and light frames cost alike (4e6 is about 40M instructions, 6-7 ms
-  // natively on this project's 2-core machine).
-  double frame_work = 4e6;
+  // leave of it, so that heavy and light frames cost alike: 4.5e6 is about 50M instructions, the
+  // frames of a 10k-vertex ROI's pull 6-8 ms natively on this project's 2-core machine.
+  double frame_work = 4.5e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;
   // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).

@@ -15,15 +15,17 @@ namespace adasculpt::sculpt {
 
 // The plan of a grab frame, in the field solve's unit (multiply-adds, about 10 instructions each
 // natively; counted from sizes, not timed, so that a replay does the same everywhere): the
-// refinement and the region iteration cost about region_work_per_vertex per vertex of the region,
-// a region iteration that measures the sizing again (Remesher::sizing_due, every 4th) about
-// sizing_work_per_vertex more; the field's amortised solve gets what is left of
-// DeformOptions::frame_work, at least min_field_fraction of it. Such a heavier frame also leaves
+// refinement and the region iteration cost about kRegionWorkPerVertex per vertex of the region
+// (a large region measures a slice of its sizing in every call, remesher.h), a region iteration
+// that measures the sizing of its whole scope again (Remesher::sizing_due: a small region, every
+// 4th call) about kSizingWorkPerVertex more; the field's amortised solve gets what is left of
+// DeformOptions::frame_work, at least kMinFieldFraction of it. Such a heavier frame also leaves
 // the field's restarts and large one-piece steps to the next frame (FieldShare).
 struct FramePlan {
-  // Calibrated with callgrind on the dragon's 10k-vertex ROI (scripts/pull-frames-callgrind.sh -v):
-  // refine + region iteration 22-24M instructions, the sizing 18-20M, for 10.5k region vertices.
-  static constexpr double kRegionWorkPerVertex = 230;
+  // Calibrated with callgrind (scripts/pull-frames-callgrind.sh -v) on the pulls of the dragon
+  // and the held-out armadillo (10-11.5k region vertices): refinement 3-4M instructions, region
+  // iteration with its sizing slice 28-32M; a whole sizing measurement 18-26M.
+  static constexpr double kRegionWorkPerVertex = 280;
   static constexpr double kSizingWorkPerVertex = 190;
   static constexpr double kMinFieldFraction = 0.1;
   double region_work = 0;  // estimated: refinement and region iteration, sizing included

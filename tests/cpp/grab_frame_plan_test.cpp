@@ -30,9 +30,11 @@ struct GrabRig {
   sculpt::FrameTimings timings;
   sculpt::ChangeSet changes;
 
-  explicit GrabRig(mesh::SurfaceMesh m, double min_length_scale = 1.0) : mesh(std::move(m)) {
+  explicit GrabRig(mesh::SurfaceMesh m, double min_length_scale = 1.0, double epsilon_scale = 1.0)
+      : mesh(std::move(m)) {
     options = remesh::default_options_for(mesh);
     options.min_length *= min_length_scale;
+    options.epsilon *= epsilon_scale;
     options.max_length = std::max(options.max_length, options.min_length);
     remesher = std::make_unique<remesh::Remesher>(mesh, options);
   }
@@ -73,7 +75,7 @@ double region_min_angle_deg(const mesh::SurfaceMesh& m, const std::vector<Vertex
 
 TEST(GrabFramePlan, TheFieldGetsWhatTheRegionLeavesOfTheFrame) {
   deform::DeformOptions o;
-  o.frame_work = 4e6;
+  o.frame_work = 4.5e6;
   using P = sculpt::FramePlan;
   const sculpt::FramePlan light = sculpt::plan_frame(5000, false, o);
   EXPECT_DOUBLE_EQ(light.region_work, 5000 * P::kRegionWorkPerVertex);
@@ -142,6 +144,28 @@ TEST(GrabFramePlan, PullFramesKeepTheirFieldShareAndTheMeshItsQuality) {
   const geometry::QualityReport q = geometry::quality_report(rig.mesh);
   EXPECT_GT(q.min_angle_deg, 15.0);
   EXPECT_LT(q.pct_min_angle_lt_30, 2.0);
+}
+
+// A grab's region above the remesher's spreading size measures a slice of its sizing in every
+// frame, never the whole region at once after the first frame (which measures the new vertices of
+// a fresh remesher): no frame of the pull is a heavier sizing frame, and the mesh keeps its angles.
+TEST(GrabFramePlan, ALargeRegionMeasuresItsSizingASliceAtATime) {
+  // epsilon at 1/25 of the default: the sphere's sizing is about its edge length (no coarsening).
+  GrabRig rig(mesh::make_icosphere(6), 1.0, 0.04);
+  rig.begin(0.1, 0.8);
+  size_t smallest_region = SIZE_MAX;
+  for (int i = 1; i <= 30; ++i) {
+    smallest_region = std::min(smallest_region, rig.grab.deformer().last().region.size());
+    rig.drag(Vec3(0, 0, 0.4 * i / 30.0));
+    EXPECT_FALSE(rig.remesher->sizing_due()) << "frame " << i;
+    EXPECT_FALSE(rig.grab.last_plan().field.defer_large_steps && i > 1) << "frame " << i;
+  }
+  const std::vector<Vertex> region = rig.grab.deformer().last().region;
+  rig.grab.end();
+  rig.mesh.validate();
+  EXPECT_GE(smallest_region, 4096u) << "the region is too small to exercise the spreading";
+  EXPECT_GT(region_min_angle_deg(rig.mesh, region), 20.0);
+  EXPECT_LT(geometry::quality_report(rig.mesh).pct_min_angle_lt_30, 2.0);
 }
 
 }  // namespace
