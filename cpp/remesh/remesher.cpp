@@ -5,7 +5,9 @@
 #include <string>
 
 #include "geometry/topology.h"
+#include "mesh/scratch.h"
 #include "remesh/remesher_impl.h"
+#include "remesh/sizing.h"
 
 namespace adasculpt::remesh {
 
@@ -218,6 +220,13 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
     for (size_t i = n * k / kRegionSizingInterval; i < n * (k + 1) / kRegionSizingInterval; ++i)
       if (m.sizing[m.scope_vertices[i]] > 0) m.sizing_slice.push_back(m.scope_vertices[i]);
     m.compute_sizing_from_current_surface(m.sizing_slice);
+    // The slice's new values meet those the rest of the scope got in other frames: the gradation
+    // limit over the whole scope (on a graded field only vertices that lower a neighbour start
+    // its queue: cheap). Without it the held-out pull's worst triangle fell from 25 to 19 degrees.
+    mesh::resize_scratch(m.kappa_known, m.mesh.vertices_size(), std::uint8_t(0));
+    for (Vertex v : m.scope_vertices) m.kappa_known[v.idx] = 1;
+    limit_sizing_gradation(m.mesh, m.scope_vertices, m.sizing, kGradation, &m.kappa_known);
+    for (Vertex v : m.scope_vertices) m.kappa_known[v.idx] = 0;
   } else if (m.region_calls_since_sizing == 0 || unmeasured) {
     m.compute_sizing_from_current_surface(m.scope_vertices);
   }

@@ -174,6 +174,7 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
   std::vector<double> roi, field, refine, deform, remesh, begin_cpu;
   size_t region = 0;
   bool capped = false;
+  geometry::QualityReport after_pull;
   for (auto _ : state) {
     for (int run = 0; run < kRuns; ++run) {
       std::vector<double> wall, cpu;
@@ -204,6 +205,7 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
         session.clear_changes();
       }
       session.grab_end();
+      if (run == kRuns - 1) after_pull = session.quality();  // what the budgets left of the mesh
       session.undo();  // every run pulls the same mesh
       wall_runs.push_back(figures(wall));
       cpu_runs.push_back(figures(cpu));
@@ -232,6 +234,8 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
               "remesh %.2f\n",
               label, percentile(roi, 0.95), percentile(field, 0.95), percentile(refine, 0.95),
               percentile(deform, 0.95), percentile(remesh, 0.95));
+  std::printf("     %-28s after the pull: min angle %.2f deg, mean min angle %.2f deg, %.3f %% of triangles under 30 deg\n",
+              label, after_pull.min_angle_deg, after_pull.mean_min_angle_deg, after_pull.pct_min_angle_lt_30);
   std::fflush(stdout);
 }
 
