@@ -20,9 +20,10 @@
 //       rotationally symmetric biharmonic profile of the geodesic distance (the exact solution
 //       on a flat disc) and is replaced, again and again, by exact solves of the current region
 //       on the current surface, each spread over several frames (BiharmonicSolver's amortised
-//       solve, field_work_per_frame each frame): no frame pays for a whole factorisation, and the
-//       field is at most one solve's duration behind the surface (about 10 frames for a
-//       10k-vertex ROI at the default budget). Warm-started CG on the
+//       solve, each frame its FieldShare: field_work_per_frame, or in a grab what the frame's
+//       other work leaves, sculpt/grab.h): no frame pays for a whole factorisation, and the
+//       field is at most one solve's duration behind the surface (about 7 frames for a
+//       10k-vertex ROI in a grab's plan). Warm-started CG on the
 //       bi-Laplacian was tried first and dropped: with a Jacobi preconditioner 30 steps a frame
 //       left a field error of 0.08 after 60 frames (it only removes local error; the
 //       bi-Laplacian's condition number grows as h^-4).
@@ -60,9 +61,9 @@ struct DeformOptions {
   double field_work_per_frame = 3e6;
   // Carried, in a grab (sculpt/grab.h): the work of a whole frame in the same unit. The field's
   // share is what the frame's refinement and region iteration (estimated from the region's size)
-  // leave of it, so that heavy and light frames cost alike: 4.5e6 is about 50M instructions, the
-  // frames of a 10k-vertex ROI's pull 6-8 ms natively on this project's 2-core machine.
-  double frame_work = 4.5e6;
+  // leave of it, so that heavy and light frames cost alike: 5e6 is about 50-55M instructions, the
+  // frames of a 10k-vertex ROI's pull 7-8 ms natively on this project's 2-core machine.
+  double frame_work = 5e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;
   // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).

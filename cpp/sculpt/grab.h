@@ -24,8 +24,9 @@ namespace adasculpt::sculpt {
 struct FramePlan {
   // Calibrated with callgrind (scripts/pull-frames-callgrind.sh -v) on the pulls of the dragon
   // and the held-out armadillo (10-11.5k region vertices): refinement 3-4M instructions, region
-  // iteration with its sizing slice 28-32M; a whole sizing measurement 18-26M.
-  static constexpr double kRegionWorkPerVertex = 280;
+  // iteration with its sizing slice and the scope's gradation 32-35M; a whole sizing
+  // measurement 18-26M.
+  static constexpr double kRegionWorkPerVertex = 330;
   static constexpr double kSizingWorkPerVertex = 190;
   static constexpr double kMinFieldFraction = 0.1;
   double region_work = 0;  // estimated: refinement and region iteration, sizing included

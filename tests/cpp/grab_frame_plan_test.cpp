@@ -75,7 +75,7 @@ double region_min_angle_deg(const mesh::SurfaceMesh& m, const std::vector<Vertex
 
 TEST(GrabFramePlan, TheFieldGetsWhatTheRegionLeavesOfTheFrame) {
   deform::DeformOptions o;
-  o.frame_work = 4.5e6;
+  o.frame_work = 5e6;
   using P = sculpt::FramePlan;
   const sculpt::FramePlan light = sculpt::plan_frame(5000, false, o);
   EXPECT_DOUBLE_EQ(light.region_work, 5000 * P::kRegionWorkPerVertex);
