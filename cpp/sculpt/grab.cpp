@@ -28,9 +28,10 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
                 double epsilon, FrameTimings& f, ChangeSet& changes) {
   const auto t0 = Clock::now();
   const size_t faces_before = mesh.faces_size();
-  // The field's solve fills what the region's work leaves of the frame: a frame whose region
-  // iteration measures the sizing again (every 4th; 20M instructions on a 10k-vertex ROI) had 1.5x
-  // the instructions of the others, and the first frames of a grab (largest region) 2x the last.
+  // The field's solve fills what the region's work leaves of the frame (FramePlan): with a fixed
+  // share, a frame whose region iteration measured the whole sizing again (every 4th; 20M
+  // instructions on a 10k-vertex ROI, now spread over the frames for such a region) had 1.5x the
+  // instructions of the others, and the first frames of a grab (largest region) 2x the last.
   plan_ = plan_frame(deformer_.last().region.size(), remesher.sizing_due(), deformer_.options());
   deform::StepResult& r = deformer_.step(mesh, total, epsilon, plan_.field);
   const auto t1 = Clock::now();
