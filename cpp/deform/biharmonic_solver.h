@@ -79,6 +79,9 @@ class BiharmonicSolver {
   // count an estimate); true once the solution is ready. Throws std::runtime_error on a
   // degenerate region, as solve() does.
   bool advance_amortized(double work_budget);
+  // The multiply-adds the last advance_amortized() did (the one-piece steps by their estimate):
+  // what a frame's share of the solve actually cost, for the frame's plan (sculpt/grab.h).
+  double amortized_work_done() const;
   bool amortized_running() const;
   // The estimated work of the amortised solve's next step when it runs in one piece (the
   // product, the ordering, the symbolic analysis, the triangular solves); 0 for the rows of the

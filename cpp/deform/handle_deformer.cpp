@@ -429,10 +429,15 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
   const double eps2 = epsilon * epsilon;
   mesh::VertexProperty<float> mask = mesh::find_mask(mesh);
   const Blender blend(inc);
+  // A translation (the usual drag) blends every point as x + w t, so the deviation below is
+  // exactly (w_mid - (w_a + w_b) / 2) t: no blend to evaluate (they were half of the test's
+  // instructions on the dragon pull).
+  const bool translation = blend.translates_only();
+  const double t2 = glm::dot(inc.translation, inc.translation);
   for (Vertex v : free_) {
     const Point& pv = mesh.position(v);
     const double wv = field_[v.idx];
-    const Point dv = blend(wv, center_, pv);
+    const Point dv = translation ? pv : blend(wv, center_, pv);
     for (mesh::Halfedge h : mesh.halfedges(v)) {
       const Vertex u = mesh.to_vertex(h);
       const Category cu = category(u);
@@ -442,6 +447,11 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
       if (mesh::fully_masked(mask, v) || mesh::fully_masked(mask, u)) continue;
       const Point& pu = mesh.position(u);
       const double wu = field_[u.idx];
+      if (translation) {
+        const double dw = midpoint_field(v, u, pv, pu) - 0.5 * (wv + wu);
+        if (dw * dw * t2 > eps2) split_edges_.push_back(mesh.edge(h));
+        continue;
+      }
       const Point mid_of_deformed = 0.5 * (dv + blend(wu, center_, pu));
       const Point deformed_mid = blend(midpoint_field(v, u, pv, pu), center_, 0.5 * (pu + pv));
       const Vec3 dev = deformed_mid - mid_of_deformed;
@@ -468,9 +478,10 @@ size_t HandleDeformer::refine(SurfaceMesh& mesh, const HandleTransform& inc, dou
   return split_edges_.size();
 }
 
-StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon, double work_scale) {
+StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon, FieldShare share) {
   if (!active_) throw std::logic_error("HandleDeformer: begin() was not called");
   auto t = Clock::now();
+  result_.field_work = 0;
   if (options_.field_solve == FieldSolve::EveryFrame) {
     compute_region(mesh);
     result_.roi_ms = ms_since(t);
@@ -482,22 +493,26 @@ StepResult& HandleDeformer::step(SurfaceMesh& mesh, const HandleTransform& total
     result_.roi_ms = ms_since(t);
     t = Clock::now();
     // The refresh: the first one started at begin(); each finished one is applied in the frame
-    // that finishes it, and the next one starts in the following frame, on the surface as it is
+    // that finishes it, and the next one starts in a following frame, on the surface as it is
     // then (the ROI measured again and the system assembled: about the work budget of a frame,
     // so that frame does no solver work). One frame used to do the last rows, the triangular
     // solves, the new ROI and the new system: 2x the budget on a 10k-vertex ROI.
+    // A heavier frame (defer_large_steps) leaves the restart, and a one-piece solver step larger
+    // than its share (the ordering), to the next frame rather than pay for them on top.
     result_.field_refreshed = false;
+    const double budget = share.work >= 0 ? share.work : options_.field_work_per_frame;
     if (restart_pending_) {
-      restart_pending_ = false;
-      refresh_region(mesh);
-      start_refresh(mesh);
+      if (!share.defer_large_steps) {
+        restart_pending_ = false;
+        refresh_region(mesh);
+        start_refresh(mesh);
+      }
     } else {
       if (!solver_.amortized_running()) start_refresh(mesh);
-      // A lighter frame (work_scale < 1) leaves a one-piece step larger than its share (the
-      // ordering) to the next frame rather than pay for it whole.
-      const double budget = options_.field_work_per_frame * work_scale;
-      if (work_scale >= 1 || solver_.amortized_next_step_work() <= budget)
+      if (!share.defer_large_steps || solver_.amortized_next_step_work() <= budget) {
         result_.field_refreshed = solver_.advance_amortized(budget);
+        result_.field_work = solver_.amortized_work_done();
+      }
       if (result_.field_refreshed) {
         apply_refresh(mesh);
         ++result_.field_refreshes;

@@ -20,9 +20,10 @@
 //       rotationally symmetric biharmonic profile of the geodesic distance (the exact solution
 //       on a flat disc) and is replaced, again and again, by exact solves of the current region
 //       on the current surface, each spread over several frames (BiharmonicSolver's amortised
-//       solve, field_work_per_frame each frame): no frame pays for a whole factorisation, and the
-//       field is at most one solve's duration behind the surface (about 10 frames for a
-//       10k-vertex ROI at the default budget). Warm-started CG on the
+//       solve, each frame its FieldShare: field_work_per_frame, or in a grab what the frame's
+//       other work leaves, sculpt/grab.h): no frame pays for a whole factorisation, and the
+//       field is at most one solve's duration behind the surface (about 7 frames for a
+//       10k-vertex ROI in a grab's plan). Warm-started CG on the
 //       bi-Laplacian was tried first and dropped: with a Jacobi preconditioner 30 steps a frame
 //       left a field error of 0.08 after 60 frames (it only removes local error; the
 //       bi-Laplacian's condition number grows as h^-4).
@@ -58,6 +59,11 @@ struct DeformOptions {
   // timed, so that a grab is reproducible; 3e6 is about 2-3 ms natively). At least one step of
   // it runs per frame, the longest being the ordering of a 10k-vertex ROI (~3 ms).
   double field_work_per_frame = 3e6;
+  // Carried, in a grab (sculpt/grab.h): the work of a whole frame in the same unit. The field's
+  // share is what the frame's refinement and region iteration (estimated from the region's size)
+  // leave of it, so that heavy and light frames cost alike: 5e6 is about 50-55M instructions, the
+  // frames of a 10k-vertex ROI's pull 7-8 ms natively on this project's 2-core machine.
+  double frame_work = 5e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;
   // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).
@@ -66,6 +72,14 @@ struct DeformOptions {
   double refinement_tolerance = 1e-4;  // relative residual of the carried factorisation
   bool refine = true;                  // the midpoint test of step 3
   bool edges_only_distance = false;    // plain Dijkstra instead of the triangle update (comparison)
+};
+
+// A frame's share of the carried field's amortised solve (FieldSolve::Carried only).
+struct FieldShare {
+  double work = -1;  // multiply-adds; < 0: DeformOptions::field_work_per_frame
+  // The frame's other work is heavier than usual: the restart of a finished refresh (a new ROI
+  // and system) and a one-piece solver step larger than `work` wait for the next frame.
+  bool defer_large_steps = false;
 };
 
 struct StepResult {
@@ -79,6 +93,9 @@ struct StepResult {
   // Carried: this frame applied a finished exact solve; how many so far in this grab.
   bool field_refreshed = false;
   int field_refreshes = 0;
+  // Carried: the multiply-adds this frame's share of the solve did (the steps that run in one
+  // piece by their estimate; the numeric rows may pass the share by one row).
+  double field_work = 0;
   // The ROI plus one ring (the first fixed ring), for Remesher::iterate_region. The caller may
   // edit it in place (the remesher does); the next step() looks in it for the vertex nearest to
   // the handle centre, so it must only hold vertices of this mesh.
@@ -99,9 +116,9 @@ class HandleDeformer {
     begin(mesh, picked, mesh::Face(), handle_radius, roi_radius);
   }
   // One frame; `total` is the transform since begin(). Edits the mesh (splits, positions).
-  // work_scale scales this frame's share of the carried field's solve (field_work_per_frame):
-  // less in frames where the remesher has more to do.
-  StepResult& step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon, double work_scale = 1.0);
+  // share: this frame's part of the carried field's solve (by default field_work_per_frame;
+  // a grab gives it what the frame's other work leaves, sculpt/grab.h).
+  StepResult& step(SurfaceMesh& mesh, const HandleTransform& total, double epsilon, FieldShare share = {});
   // Steps 1-2 only (no refinement, no deformation): for tests and for measuring the field.
   void compute_region_and_field(const SurfaceMesh& mesh);
   // Step 2 only, on the region of the last call (same vertices; geometry may have changed):

@@ -56,6 +56,8 @@ class Blender {
       half_angle_ = portable::atan2(s, t.rotation.w);
     }
   }
+  // Without rotation and scale the blend is c + w t + (x - c): affine in w (refine() uses this).
+  bool translates_only() const { return !rotates_ && t_.scale == 1.0; }
   Point operator()(double w, const Point& c, const Point& x) const {
     const Vec3 scaled = (1.0 + w * (t_.scale - 1.0)) * (x - c);
     if (!rotates_) return c + w * t_.translation + scaled;

@@ -89,8 +89,9 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
-  // The next iterate_region measures the sizing again (it does every few calls): a caller with
-  // a frame budget can give that frame's other work less.
+  // The next iterate_region measures the sizing of its whole scope again (it does every few
+  // calls; a large scope, measured a slice per call, never all at once once measured): a caller
+  // with a frame budget can give that frame's other work less.
   bool sizing_due() const;
   // Region iterations measure the sizing of their scope (kept per vertex) every few calls. A
   // sequence of them ends (a brush stroke): the sizing of `vertices` goes back to unmeasured and

@@ -138,6 +138,8 @@ struct Remesher::Impl : RemeshScratch {
   void note_budget_reached();     // sets the report's warning
   bool whole_mesh = false;
   int region_calls_since_sizing = 0;  // the scope is every vertex: iterate edges directly
+  bool sizing_spread = false;  // the last region call measured a slice of its scope (iterate_region)
+  std::vector<Vertex> sizing_slice;
   bool reference_stale = false;
 
   // Per-element state kept on the mesh so it follows splits, collapses and compaction.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -29,7 +31,24 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
   // that cannot with its neighbours' first values cannot later either (values only drop), and on
   // a field that is already graded (most of a sculpting frame's region) the queue stays small.
   using Item = std::pair<double, mesh::Index>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  // A min-heap on storage that outlives the call: a grab runs this every frame (remesher.cpp's
+  // sizing slices), and a fresh std::priority_queue reallocated its vector a dozen times a call.
+  // A large one (a whole-mesh remesh) is released after use.
+  static thread_local std::vector<Item> heap;
+  heap.clear();
+  struct Queue {
+    std::vector<Item>& items;
+    bool empty() const { return items.empty(); }
+    const Item& top() const { return items.front(); }
+    void push(const Item& item) {
+      items.push_back(item);
+      std::push_heap(items.begin(), items.end(), std::greater<Item>());
+    }
+    void pop() {
+      std::pop_heap(items.begin(), items.end(), std::greater<Item>());
+      items.pop_back();
+    }
+  } queue{heap};
   // On the flat arrays: the seeding visits every edge of a sculpting frame's region.
   const auto* hc = mesh.halfedge_connectivity_data();
   const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
@@ -78,6 +97,7 @@ void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mes
       return false;
     });
   }
+  if (heap.capacity() > (size_t(1) << 16)) std::vector<Item>().swap(heap);
 }
 
 }  // namespace adasculpt::remesh

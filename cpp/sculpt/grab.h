@@ -13,6 +13,27 @@
 
 namespace adasculpt::sculpt {
 
+// The plan of a grab frame, in the field solve's unit (multiply-adds, about 10 instructions each
+// natively; counted from sizes, not timed, so that a replay does the same everywhere): the
+// refinement and the region iteration cost about kRegionWorkPerVertex per vertex of the region
+// (a large region measures a slice of its sizing in every call, remesher.h), a region iteration
+// that measures the sizing of its whole scope again (Remesher::sizing_due: a small region, every
+// 4th call) about kSizingWorkPerVertex more; the field's amortised solve gets what is left of
+// DeformOptions::frame_work, at least kMinFieldFraction of it. Such a heavier frame also leaves
+// the field's restarts and large one-piece steps to the next frame (FieldShare).
+struct FramePlan {
+  // Calibrated with callgrind (scripts/pull-frames-callgrind.sh -v) on the pulls of the dragon
+  // and the held-out armadillo (10-11.5k region vertices): refinement 3-4M instructions, region
+  // iteration with its sizing slice and the scope's gradation 32-35M; a whole sizing
+  // measurement 18-26M.
+  static constexpr double kRegionWorkPerVertex = 330;
+  static constexpr double kSizingWorkPerVertex = 190;
+  static constexpr double kMinFieldFraction = 0.1;
+  double region_work = 0;  // estimated: refinement and region iteration, sizing included
+  deform::FieldShare field;
+};
+FramePlan plan_frame(size_t region_vertices, bool sizing_due, const deform::DeformOptions& options);
+
 class Grab {
  public:
   // picked: the surface point the grab holds, on face `picked_face` (a live face of mesh).
@@ -27,9 +48,12 @@ class Grab {
   // budget; they apply from the next begin().
   deform::DeformOptions& options() { return deformer_.options(); }
   const deform::HandleDeformer& deformer() const { return deformer_; }
+  // The plan of the last frame (its field share and the other work it expected).
+  const FramePlan& last_plan() const { return plan_; }
 
  private:
   deform::HandleDeformer deformer_;
+  FramePlan plan_;
 };
 
 }  // namespace adasculpt::sculpt

@@ -42,6 +42,8 @@ struct FrameTimings {
   int stamps = 0;
   bool roi_capped = false;
   int roi_vertices = 0;
+  // A grab frame's mesh edits: the refinement's splits, then the region iteration's.
+  int refine_splits = 0, splits = 0, collapses = 0, flips = 0;
 };
 
 // What changed since the last clear_changes(). topology_changed: faces or vertices were added or
