@@ -46,9 +46,12 @@ FaceGrid::Entry FaceGrid::entry_of(const mesh::SurfaceMesh& mesh, mesh::Face f, 
   mesh::Vertex v[3];
   mesh.face_vertices(f, v);
   const Point &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
-  const Point lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+  return entry_of_box(f.idx, glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)), cells);
+}
+
+FaceGrid::Entry FaceGrid::entry_of_box(std::uint32_t face, const Point& lo, const Point& hi, CellRange* cells) const {
   Entry entry;
-  entry.face = f.idx;
+  entry.face = face;
   entry.next = kNone;
   for (int k = 0; k < 3; ++k) {
     entry.lo[k] = float_below(lo[k]);
@@ -74,20 +77,51 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
   while (buckets < kBucketsPerFace * mesh.n_faces()) buckets *= 2;
   mask_ = static_cast<std::uint32_t>(buckets - 1);
   // Counting sort by bucket: count, offsets, then fill (start_[b + 1] counts down to start_[b]).
-  // (The faces' entries and cells are kept between the two passes: reading a face's corners
-  // is the slow part, a cache miss or more each on a remeshed mesh.)
+  // The face boxes from one scan of the halfedges in memory order: following each face's
+  // halfedges instead was the slow part of a build (a cache miss or more per corner on a
+  // remeshed mesh, whose elements are far from memory order). Read again by the second pass.
+  const size_t n_slots = mesh.faces_size();
+  box_lo_.assign(n_slots, Point(std::numeric_limits<double>::infinity()));
+  box_hi_.assign(n_slots, Point(-std::numeric_limits<double>::infinity()));
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const std::uint8_t* edel = mesh.edge_deleted_data();
+  const Point* pos = mesh.positions().data();
+  const size_t n_halfedges = mesh.halfedges_size();
+  for (size_t h = 0; h < n_halfedges; ++h) {
+    const mesh::Face f = hc[h].face;
+    if (edel[h >> 1] || !f.is_valid()) continue;
+    const Point& p = pos[hc[h].to.idx];
+    box_lo_[f.idx] = glm::min(box_lo_[f.idx], p);
+    box_hi_[f.idx] = glm::max(box_hi_[f.idx], p);
+  }
   start_.assign(buckets + 1, 0u);
-  staged_.clear();
-  for (mesh::Face f : mesh.faces()) {
+  const std::uint8_t* fdel = mesh.face_deleted_data();
+  for (size_t f = 0; f < n_slots; ++f) {
+    if (fdel[f]) continue;
     CellRange r;
-    const Entry entry = entry_of(mesh, f, &r);
-    staged_.push_back({entry, r});
+    entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &r);
     for_each_bucket(r, [&](std::uint32_t b) { ++start_[b + 1]; });
   }
   for (size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
   entries_.resize(start_[buckets]);
-  for (const Staged& s : staged_)
-    for_each_bucket(s.cells, [&](std::uint32_t b) { entries_[--start_[b + 1]] = s.entry; });
+  placed_.resize(n_slots);
+  for (size_t f = 0; f < n_slots; ++f) {
+    if (fdel[f]) continue;
+    CellRange r;
+    const Entry entry = entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &r);
+    Placed& placed = placed_[f];
+    placed.count = 0;
+    bool all = true;
+    for_each_bucket(r, [&](std::uint32_t b) {
+      const std::uint32_t at = --start_[b + 1];
+      entries_[at] = entry;
+      if (placed.count < kMaxPlaced)
+        placed.at[placed.count++] = at;
+      else
+        all = false;
+    });
+    if (!all) placed.count = 0;
+  }
   // start_[b + 1] now holds the start of bucket b: move the offsets down by one bucket.
   for (size_t b = 0; b < buckets; ++b) start_[b] = start_[b + 1];
   start_[buckets] = static_cast<std::uint32_t>(entries_.size());
@@ -108,6 +142,16 @@ void FaceGrid::insert(const mesh::SurfaceMesh& mesh, mesh::Face f) {
   if (f.idx >= seen_.size()) seen_.resize(mesh.faces_size(), 0u);
   CellRange r;
   Entry entry = entry_of(mesh, f, &r);
+  if (f.idx < placed_.size() && placed_[f.idx].count > 0) {
+    Placed& placed = placed_[f.idx];
+    const Entry& old = entries_[placed.at[0]];
+    const CellRange was = cells_of(Point(old.lo[0], old.lo[1], old.lo[2]), Point(old.hi[0], old.hi[1], old.hi[2]));
+    if (std::equal(r.lo, r.lo + 3, was.lo) && std::equal(r.hi, r.hi + 3, was.hi)) {
+      for (std::uint32_t k = 0; k < placed.count; ++k) entries_[placed.at[k]] = entry;
+      return;
+    }
+    placed.count = 0;  // from now on in the overflow lists (its old entries stay, stale)
+  }
   for_each_bucket(r, [&](std::uint32_t b) {
     entry.next = overflow_head_[b];
     overflow_.push_back(entry);

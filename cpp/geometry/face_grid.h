@@ -70,6 +70,7 @@ class FaceGrid {
     return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
   }
   Entry entry_of(const mesh::SurfaceMesh& mesh, mesh::Face f, CellRange* cells) const;
+  Entry entry_of_box(std::uint32_t face, const Point& lo, const Point& hi, CellRange* cells) const;
   template <class Visit>
   void for_each_bucket(const CellRange& r, Visit&& visit) const {
     for (std::int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
@@ -89,11 +90,17 @@ class FaceGrid {
   std::vector<Entry> entries_;
   std::vector<std::uint32_t> overflow_head_;  // per bucket: its last inserted entry in overflow_
   std::vector<Entry> overflow_;
-  struct Staged {
-    Entry entry;
-    CellRange cells;
+  // Where build() put each face's entries, for updates in place: most edits (a flip, a collapse's
+  // fan, a relaxed vertex) leave a face's box in the same cells. The overflow lists, the other
+  // way, cost a cache miss per entry to every query that walks them (half a remesh's queries'
+  // time before). count 0: none, or more cells than kMaxPlaced.
+  static constexpr int kMaxPlaced = 8;
+  struct Placed {
+    std::uint32_t count = 0;
+    std::uint32_t at[kMaxPlaced];
   };
-  std::vector<Staged> staged_;  // build()'s scratch
+  std::vector<Placed> placed_;
+  std::vector<Point> box_lo_, box_hi_;  // build()'s scratch: per face slot
   std::vector<std::uint32_t> seen_;  // per face slot: == run_ when gathered by the current query
   std::uint32_t run_ = 0;
 };

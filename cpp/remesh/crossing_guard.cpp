@@ -1,55 +1,121 @@
-// No operation of a whole-mesh iteration may make the surface cross itself (issue 17 item 2).
-// The per-face orientation tests of the passes only look at the one-ring: a collapse on one side
-// of a thin part (a dragon's fin, a CAD part's coarse wall) can push its new triangles through
-// the other side a few rings away while every triangle keeps its orientation (dragon, uniform
-// 8 % with features at 45 degrees: 566 crossing pairs). Here the triangles an operation would
-// create are tested exactly (geometry/self_intersections) against every face whose box their
-// box touches, found in a hash grid of the current faces (geometry/face_grid) kept up to date by
-// the operations; a crossing refuses the collapse or flip, and sends a relaxed vertex back.
-//
-// Whole-mesh iterations only: a sculpting frame's region would need the faces around it, and its
-// budget has no room for them (the frame path pays a test of grid.built() per operation).
+#include "remesh/crossing_guard.h"
+
 #include <algorithm>
-#include <array>
-#include <cstdint>
+#include <cmath>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "geometry/self_intersections.h"
-#include "remesh/remesher_impl.h"
 
 namespace adasculpt::remesh {
 
 namespace {
-// Cells as long as this many mean edges: a face's box then covers about one to eight cells.
+// Cells as long as this many mean edges: a face's box covers one or two cells along each axis,
+// an operation's new triangles a few. Measured on dragon.off at the default settings: 1.5 or 2
+// mean edges cost 10-15 % more time (more cells per query, more entries per face), 4 about as much.
 constexpr double kCellEdges = 3.0;
+
+bool boxes_disjoint(const Point& alo, const Point& ahi, const Point& blo, const Point& bhi) {
+  return ahi.x < blo.x || alo.x > bhi.x || ahi.y < blo.y || alo.y > bhi.y || ahi.z < blo.z || alo.z > bhi.z;
+}
+
+// A fast floating-point answer for most pairs of neighbouring faces, which are (nearly) coplanar
+// on flat and smooth parts: there every orientation is (nearly) zero, the exact predicates fall
+// back to expansion arithmetic, and fandisk.off's remeshing took six times as long. True only
+// when the two can surely not cross: both turned the same way (normals within 60 degrees) and
+// their shadows on the plane across the mean normal apart by a margin far above rounding
+// (a common corner or edge allowed). A 3D meeting point off the common corners would cast a
+// shadow in both. Otherwise the exact test decides.
+bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
+                  const std::array<std::uint32_t, 3>& qid) {
+  const Vec3 np = glm::cross(p[1] - p[0], p[2] - p[0]), nq = glm::cross(q[1] - q[0], q[2] - q[0]);
+  const double d = glm::dot(np, nq);
+  if (!(d > 0 && d * d > 0.25 * glm::dot(np, np) * glm::dot(nq, nq))) return false;
+  int shared = 0;
+  for (std::uint32_t a : pid)
+    for (std::uint32_t b : qid) shared += a == b;
+  if (shared == 2) return true;  // across an edge they can only meet by folding onto each other
+  // The shadows: 2D coordinates in a frame across n, which both normals make an acute angle
+  // with (so both triangles turn counter-clockwise there). The axes need not be unit vectors: a
+  // linear map keeps every side and separation, and the margin is measured in the same units.
+  const Vec3 n = np + nq;
+  const Vec3 u = glm::cross(n, std::abs(n.x) < std::abs(n.y) ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+  const Vec3 w = glm::cross(n, u);
+  double px[3], py[3], qx[3], qy[3];
+  for (int k = 0; k < 3; ++k) {
+    px[k] = glm::dot(p[k], u), py[k] = glm::dot(p[k], w);
+    qx[k] = glm::dot(q[k], u), qy[k] = glm::dot(q[k], w);
+  }
+  double scale = 0;
+  for (int k = 0; k < 3; ++k)
+    scale = std::max({scale, std::abs(px[k] - px[0]), std::abs(py[k] - py[0]), std::abs(qx[k] - px[0]),
+                      std::abs(qy[k] - py[0])});
+  const double margin = 1e-9 * scale * scale;
+  // A separating line through an edge of either shadow: the other triangle's corners beyond it,
+  // but for the corners the two share (on the line, which allows them).
+  auto separated_by_edges = [&](const double* ax, const double* ay, const std::array<std::uint32_t, 3>& aid,
+                                const double* bx, const double* by, const std::array<std::uint32_t, 3>& bid) {
+    const double area = (ax[1] - ax[0]) * (ay[2] - ay[0]) - (ay[1] - ay[0]) * (ax[2] - ax[0]);
+    if (!(area > margin)) return false;  // not counter-clockwise by a margin: no answer here
+    for (int e = 0; e < 3; ++e) {
+      const int i = e, j = (e + 1) % 3;
+      bool beyond = true;
+      for (int k = 0; k < 3 && beyond; ++k) {
+        if (bid[k] == aid[i] || bid[k] == aid[j]) continue;
+        const double side = (ax[j] - ax[i]) * (by[k] - ay[i]) - (ay[j] - ay[i]) * (bx[k] - ax[i]);
+        beyond = side < -margin;
+      }
+      if (beyond) return true;
+    }
+    return false;
+  };
+  return separated_by_edges(px, py, pid, qx, qy, qid) || separated_by_edges(qx, qy, qid, px, py, pid);
+}
+
+std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f) {
+  mesh::Vertex c[3];
+  mesh.face_vertices(f, c);
+  return {c[0].idx, c[1].idx, c[2].idx};
+}
 }  // namespace
 
-void Remesher::Impl::start_crossing_guard() {
-  if (!whole_mesh) return;
+void CrossingGuard::start(const SurfaceMesh& mesh) {
   const auto* hc = mesh.halfedge_connectivity_data();
   const Point* pos = mesh.positions().data();
   double sum = 0;
   size_t n = 0;
-  // The mean edge: where the collapses that follow make faces larger, the grid's cells grow too
-  // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
   for (Edge e : mesh.edges()) {
     sum += glm::length(pos[hc[e.idx << 1].to.idx] - pos[hc[(e.idx << 1) | 1u].to.idx]);
     ++n;
   }
   if (n == 0) return;
-  face_grid.build(mesh, kCellEdges * sum / static_cast<double>(n));
+  // The mean edge: where the collapses that follow make faces larger, the cells grow with them
+  // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
+  grid_.build(mesh, kCellEdges * sum / static_cast<double>(n));
 }
 
-void Remesher::Impl::stop_crossing_guard() {
-  face_grid.clear();
+void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
+  if (!grid_.built()) return;
+  grid_.insert(mesh, mesh.face(mesh.halfedge(e, 0)));
+  grid_.insert(mesh, mesh.face(mesh.halfedge(e, 1)));
 }
 
-// The faces near the triangles are gathered once for all of them (an operation's new triangles
-// are neighbours: their boxes overlap), then each candidate is read once from the mesh.
-Remesher::Impl::Crossing Remesher::Impl::triangles_cross_nearby(const GuardTriangle* ts, size_t n, Vertex replaced0,
-                                                                Vertex replaced1, Face skip0, Face skip1) const {
+// The faces near the candidates are gathered once for all of them (an operation's new
+// triangles are neighbours: their boxes overlap), then each is read once from the mesh.
+namespace {
+// Whether the faces with corners a and b crossed at the positions `before` (per vertex slot).
+bool crossed_before(const std::vector<Point>& before, const std::array<std::uint32_t, 3>& a,
+                    const std::array<std::uint32_t, 3>& b) {
+  const Point pa[3] = {before[a[0]], before[a[1]], before[a[2]]}, pb[3] = {before[b[0]], before[b[1]], before[b[2]]};
+  if (geometry::collinear(pa[0], pa[1], pa[2]) || geometry::collinear(pb[0], pb[1], pb[2])) return false;
+  return geometry::faces_intersect(pa, a, pb, b);
+}
+}  // namespace
+
+CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n,
+                                                      Vertex replaced0, Vertex replaced1, Face skip0, Face skip1,
+                                                      const std::vector<Point>* before) {
   Crossing crossing;
   if (n == 0) return crossing;
   Point lo = ts[0].p[0], hi = ts[0].p[0];
@@ -61,16 +127,13 @@ Remesher::Impl::Crossing Remesher::Impl::triangles_cross_nearby(const GuardTrian
     }
     for (const Point& p : ts[i].p) lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
-  guard_candidates.clear();
-  face_grid.gather(lo, hi, guard_candidates);
+  near_.clear();
+  grid_.gather(lo, hi, near_);
   const auto* hc = mesh.halfedge_connectivity_data();
-  const Halfedge* fh = mesh.face_halfedge_data();
+  const mesh::Halfedge* fh = mesh.face_halfedge_data();
   const std::uint8_t* fdel = mesh.face_deleted_data();
   const Point* pos = mesh.positions().data();
-  auto disjoint = [](const Point& alo, const Point& ahi, const Point& blo, const Point& bhi) {
-    return ahi.x < blo.x || alo.x > bhi.x || ahi.y < blo.y || alo.y > bhi.y || ahi.z < blo.z || alo.z > bhi.z;
-  };
-  for (const Face g : guard_candidates) {
+  for (const Face g : near_) {
     if (g.idx >= mesh.faces_size() || fdel[g.idx] || g == skip0 || g == skip1) continue;
     const Halfedge h0 = fh[g.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
     const std::array<std::uint32_t, 3> ids = {hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};
@@ -79,41 +142,37 @@ Remesher::Impl::Crossing Remesher::Impl::triangles_cross_nearby(const GuardTrian
       continue;  // a face the operation rewrites
     const Point q[3] = {pos[ids[0]], pos[ids[1]], pos[ids[2]]};
     const Point qlo = glm::min(q[0], glm::min(q[1], q[2])), qhi = glm::max(q[0], glm::max(q[1], q[2]));
-    if (disjoint(qlo, qhi, lo, hi)) continue;  // (the grid's boxes are rounded outwards)
-    bool tested_degeneracy = false;
+    if (boxes_disjoint(qlo, qhi, lo, hi)) continue;  // (the grid's boxes are rounded outwards, or stale)
+    bool checked_degenerate = false;
     for (size_t i = 0; i < n; ++i) {
-      const GuardTriangle& t = ts[i];
+      const Candidate& t = ts[i];
       if (g == t.face) continue;
       const Point tlo = glm::min(t.p[0], glm::min(t.p[1], t.p[2])), thi = glm::max(t.p[0], glm::max(t.p[1], t.p[2]));
-      if (disjoint(qlo, qhi, tlo, thi)) continue;
-      if (!tested_degeneracy) {
-        tested_degeneracy = true;
+      if (boxes_disjoint(qlo, qhi, tlo, thi)) continue;
+      if (!checked_degenerate) {
+        checked_degenerate = true;
         if (geometry::collinear(q[0], q[1], q[2])) break;  // left out, as the self-intersection count does
       }
-      if (geometry::faces_intersect(t.p, t.ids, q, ids)) {
-        // A crossing the faces being replaced have already (the input's own, which the split
-        // pass multiplies) is not the operation's: refusing every operation next to one would
-        // leave the slivers around it (bunny: a 6.7-degree triangle at an input crossing).
-        if (crossed_already(g, q, ids, replaced0, replaced1, skip0, skip1)) break;
-        crossing.found = true;
-        crossing.triangle = i;
-        crossing.face = g;
-        return crossing;
-      }
+      if (surely_apart(t.p, t.ids, q, ids) || !geometry::faces_intersect(t.p, t.ids, q, ids)) continue;
+      if (crossed_already(mesh, g, q, ids, replaced0, replaced1, skip0, skip1)) break;
+      if (before && crossed_before(*before, t.ids, ids)) continue;
+      crossing.found = true;
+      crossing.triangle = i;
+      crossing.face = g;
+      return crossing;
     }
   }
   return crossing;
 }
 
-bool Remesher::Impl::crossed_already(Face g, const Point q[3], const std::array<std::uint32_t, 3>& ids,
-                                      Vertex replaced0, Vertex replaced1, Face skip0, Face skip1) const {
+bool CrossingGuard::crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3],
+                                    const std::array<std::uint32_t, 3>& ids, Vertex replaced0, Vertex replaced1,
+                                    Face skip0, Face skip1) const {
   auto crosses_g = [&](Face f) {
     if (!f.is_valid() || f == g) return false;
-    mesh::Vertex c[3];
-    mesh.face_vertices(f, c);
-    const Point p[3] = {mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2])};
-    if (geometry::collinear(p[0], p[1], p[2])) return false;
-    return geometry::faces_intersect(p, {c[0].idx, c[1].idx, c[2].idx}, q, ids);
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    const Point p[3] = {mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]};
+    return !geometry::collinear(p[0], p[1], p[2]) && geometry::faces_intersect(p, c, q, ids);
   };
   for (const Vertex r : {replaced0, replaced1})
     if (r.is_valid())
@@ -122,137 +181,110 @@ bool Remesher::Impl::crossed_already(Face g, const Point q[3], const std::array<
   return crosses_g(skip0) || crosses_g(skip1);
 }
 
-bool Remesher::Impl::collapse_crosses(Halfedge h, const Point& target, bool both_ends_move) const {
-  if (!face_grid.built()) return false;
+bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
+  if (!grid_.built()) return false;
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
-  guard_triangles.clear();
+  candidates_.clear();
   auto add_fan = [&](Vertex centre, Vertex other) {
     for (Halfedge out : mesh.halfedges(centre)) {
       if (mesh.is_boundary(out)) continue;
       const Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
       if (w == other || w2 == other) continue;  // one of the two triangles that vanish
-      guard_triangles.push_back({{target, mesh.position(w), mesh.position(w2)}, {v1.idx, w.idx, w2.idx}, Face()});
+      candidates_.push_back({{target, mesh.position(w), mesh.position(w2)}, {v1.idx, w.idx, w2.idx}, Face()});
     }
   };
   add_fan(v0, v1);
   if (both_ends_move) add_fan(v1, v0);
-  if (triangles_cross_nearby(guard_triangles.data(), guard_triangles.size(), v0, both_ends_move ? v1 : Vertex(),
-                             Face(), Face())
+  if (first_crossing(mesh, candidates_.data(), candidates_.size(), v0, both_ends_move ? v1 : Vertex(), Face(),
+                     Face())
           .found)
     return true;
   // The new fan against itself: triangles meeting only at the survivor may still cross.
-  for (size_t i = 0; i < guard_triangles.size(); ++i)
-    for (size_t j = i + 1; j < guard_triangles.size(); ++j)
-      if (geometry::faces_intersect(guard_triangles[i].p, guard_triangles[i].ids, guard_triangles[j].p,
-                                    guard_triangles[j].ids))
+  for (size_t i = 0; i < candidates_.size(); ++i)
+    for (size_t j = i + 1; j < candidates_.size(); ++j)
+      if (geometry::faces_intersect(candidates_[i].p, candidates_[i].ids, candidates_[j].p, candidates_[j].ids))
         return true;
   return false;
 }
 
-bool Remesher::Impl::flip_crosses(Edge e) const {
-  if (!face_grid.built()) return false;
+bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
+  if (!grid_.built()) return false;
   const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
   const Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
   const Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
   const Point &pa = mesh.position(a), &pb = mesh.position(b), &pc = mesh.position(c), &pd = mesh.position(d);
-  // The two new triangles share the edge cd; flip_geometry_ok keeps them from folding.
-  const GuardTriangle t[2] = {{{pa, pd, pc}, {a.idx, d.idx, c.idx}, Face()}, {{pd, pb, pc}, {d.idx, b.idx, c.idx}, Face()}};
-  return triangles_cross_nearby(t, 2, Vertex(), Vertex(), mesh.face(h), mesh.face(o)).found;
+  // The two new triangles share the edge cd; the flip's own test keeps them from folding.
+  const Candidate t[2] = {{{pa, pd, pc}, {a.idx, d.idx, c.idx}, Face()}, {{pd, pb, pc}, {d.idx, b.idx, c.idx}, Face()}};
+  return first_crossing(mesh, t, 2, Vertex(), Vertex(), mesh.face(h), mesh.face(o)).found;
 }
 
-Remesher::Impl::Crossing Remesher::Impl::fan_crossing(Vertex v) const {
-  if (!face_grid.built()) return {};
-  guard_triangles.clear();
+CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Vertex v,
+                                                    const std::vector<Point>* before) {
+  candidates_.clear();
+  if (!grid_.built()) return {};
   for (Face f : mesh.faces(v)) {
-    mesh::Vertex c[3];
-    mesh.face_vertices(f, c);
-    guard_triangles.push_back(
-        {{mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2])}, {c[0].idx, c[1].idx, c[2].idx}, f});
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    candidates_.push_back({{mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]}, c, f});
   }
-  return triangles_cross_nearby(guard_triangles.data(), guard_triangles.size(), Vertex(), Vertex(), Face(), Face());
+  return first_crossing(mesh, candidates_.data(), candidates_.size(), Vertex(), Vertex(), Face(), Face(), before);
 }
 
-void Remesher::Impl::note_flip(Edge e) {
-  if (!face_grid.built()) return;
-  face_grid.insert(mesh, mesh.face(mesh.halfedge(e, 0)));
-  face_grid.insert(mesh, mesh.face(mesh.halfedge(e, 1)));
-}
-
-void Remesher::Impl::note_fan_changed(Vertex v) { face_grid.insert_fan(mesh, v); }
-
-// The relaxation moves every vertex at once and the projection after it moves them again, so
-// its moves are checked together afterwards: a face with a moved corner that crosses a face
-// nearby sends its moved corners back to where they were before the relaxation,
-// with those of the face it crosses, and the fans of the vertices sent back are checked again.
-// Every vertex goes back at most once, and the mesh before the relaxation had no new crossing,
-// so this ends crossing-free (but for crossings between faces that did not move: the relaxation
-// did not make them). The first round checks every pair of touching boxes in one sweep over
-// the grid: a search around each of the tens of thousands of moved vertices cost four times as
-// much (memory-bound), the later rounds search around the few vertices sent back.
-// A face that turns over without crossing anything stays: the relaxation untangles the folds of
-// an input that crosses itself that way (bunny.off's two crossing pairs), and sending such faces
-// back restored them.
-size_t Remesher::Impl::undo_crossing_moves() {
-  if (!whole_mesh || relaxed_from.size() != scope_vertices.size()) return 0;
-  mesh::resize_scratch(before_move, mesh.vertices_size());
+// The first round checks every pair of touching boxes in one sweep over the grid's cells: a
+// search around each of the tens of thousands of moved vertices cost four times as much
+// (memory-bound); the later rounds search around the few vertices sent back.
+// Only new crossings count: a pair that crossed before the moves (an input that crosses itself,
+// its crossings multiplied by the splits) keeps its moves, which often untangle it; sending
+// them back froze cgal/corner_poly.off's crossing corner (1,616 new pairs at epsilon 0.5 %). For
+// the same reason a face that turns over without crossing anything stays (bunny.off's two
+// crossing pairs are untangled that way).
+size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before) {
   const Point* pos = mesh.positions().data();
-  std::copy(pos, pos + mesh.vertices_size(), before_move.begin());  // (masked vertices stay)
-  bool any_moved = false;
-  for (size_t i = 0; i < scope_vertices.size(); ++i) {
-    const Vertex v = scope_vertices[i];
-    before_move[v.idx] = relaxed_from[i];
-    any_moved = any_moved || (!mesh.is_deleted(v) && relaxed_from[i] != pos[v.idx]);
+  auto moved = [&](std::uint32_t w) { return pos[w] != before[w]; };
+  // Each face's corners once, in face order: the sweep below meets every face several times.
+  face_corners_.resize(mesh.faces_size());
+  moved_face_.assign(mesh.faces_size(), 0);
+  bool any = false;
+  for (Face f : mesh.faces()) {
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    face_corners_[f.idx] = c;
+    moved_face_[f.idx] = moved(c[0]) || moved(c[1]) || moved(c[2]);
+    any = any || moved_face_[f.idx];
   }
-  if (!any_moved) return 0;
-  start_crossing_guard();
-  auto moved = [&](std::uint32_t w) { return pos[w] != before_move[w]; };
-  auto corners = [&](Face f) {
-    const auto* hc = mesh.halfedge_connectivity_data();
-    const Halfedge h0 = mesh.face_halfedge_data()[f.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
-    return std::array<std::uint32_t, 3>{hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};
-  };
+  if (!any) return 0;
+  start(mesh);
   auto undo_corners = [&](const std::array<std::uint32_t, 3>& c) {
     for (std::uint32_t w : c)
-      if (moved(w)) to_undo.push_back(Vertex(w));
+      if (moved(w)) to_undo_.push_back(Vertex(w));
   };
-  // ---- first round: the moved faces (face_seen: the relaxation's scratch, free now)
-  mesh::resize_scratch(face_seen, mesh.faces_size(), 0u);
-  if (++face_run == 0) {
-    std::fill(face_seen.begin(), face_seen.end(), 0);
-    face_run = 1;
-  }
-  to_undo.clear();
-  for (Face f : mesh.faces()) {
-    const std::array<std::uint32_t, 3> c = corners(f);
-    if (moved(c[0]) || moved(c[1]) || moved(c[2])) face_seen[f.idx] = face_run;
-  }
-  face_grid.for_each_overlapping_pair([&](Face f, Face g) {
-    if (face_seen[f.idx] != face_run && face_seen[g.idx] != face_run) return;
-    const std::array<std::uint32_t, 3> cf = corners(f), cg = corners(g);
+  to_undo_.clear();
+  grid_.for_each_overlapping_pair([&](Face f, Face g) {
+    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return;
+    const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
     const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
     if (geometry::collinear(pf[0], pf[1], pf[2]) || geometry::collinear(pg[0], pg[1], pg[2])) return;
-    if (!geometry::faces_intersect(pf, cf, pg, cg)) return;
+    if (surely_apart(pf, cf, pg, cg) || !geometry::faces_intersect(pf, cf, pg, cg)) return;
+    if (crossed_before(before, cf, cg)) return;  // not the moves' doing
     undo_corners(cf);
     undo_corners(cg);
   });
-  // ---- later rounds: the fans of the vertices sent back
   size_t undone = 0;
   for (;;) {
-    to_check.clear();
-    for (const Vertex w : to_undo) {
+    to_check_.clear();
+    for (const Vertex w : to_undo_) {
       if (!moved(w.idx)) continue;  // listed twice, or back already
-      mesh.position(w) = before_move[w.idx];
-      face_grid.insert_fan(mesh, w);
-      to_check.push_back(w);
+      mesh.position(w) = before[w.idx];
+      grid_.insert_fan(mesh, w);
+      to_check_.push_back(w);
       ++undone;
     }
-    if (to_check.empty()) break;
-    to_undo.clear();
-    for (const Vertex v : to_check) {
-      const Crossing crossing = fan_crossing(v);  // (guard_triangles: v's fan)
+    if (to_check_.empty()) break;
+    // The fans of the vertices sent back, against their neighbours' new places.
+    to_undo_.clear();
+    for (const Vertex v : to_check_) {
+      const Crossing crossing = fan_crossing(mesh, v, &before);
       if (!crossing.found) continue;
-      undo_corners(guard_triangles[crossing.triangle].ids);
-      if (crossing.face.is_valid()) undo_corners(corners(crossing.face));
+      undo_corners(candidates_[crossing.triangle].ids);
+      if (crossing.face.is_valid()) undo_corners(corners(mesh, crossing.face));
     }
   }
   return undone;

@@ -109,7 +109,7 @@ IterationStats Remesher::iterate() {
     m.start_crossing_guard();
     m.tolerance_scale = Impl::kCleanupTolerance;
     m.fix_bad_faces(kDegenerateAngleDeg);
-    m.stop_crossing_guard();
+    m.crossing_guard.stop();
     m.tolerance_scale = 1.0;
   }
   m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
@@ -119,7 +119,7 @@ IterationStats Remesher::iterate() {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  m.stop_crossing_guard();
+  m.crossing_guard.stop();
   m.leave_whole_mesh();
   return stats;
 }
@@ -233,7 +233,7 @@ size_t Remesher::polish() {
   m.enter_whole_mesh();
   m.start_crossing_guard();
   const size_t moved = m.place_sliver_vertices(kPlacedSliverAngleDeg, false);
-  m.stop_crossing_guard();
+  m.crossing_guard.stop();
   m.leave_whole_mesh();
   return moved;
 }

@@ -9,10 +9,10 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/aabb_tree.h"
-#include "geometry/face_grid.h"
 #include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
 #include "mesh/vertex_mask.h"
+#include "remesh/crossing_guard.h"
 #include "remesh/remesher.h"
 
 namespace adasculpt::remesh {
@@ -312,42 +312,20 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<FanShape> fan_shapes;
   void remember_positions();
   size_t project_vertices_guarded();
-  // ---- no new self-intersections (crossing_guard.cpp), whole-mesh iterations only
-  struct GuardTriangle {  // a triangle an operation would create (or a face that moved): corners and vertex ids
-    Point p[3];
-    std::array<std::uint32_t, 3> ids;
-    Face face;  // the face itself when it exists (never tested against itself)
-  };
-  mutable geometry::FaceGrid face_grid;  // built while the guard is on (queries stamp its faces)
-  mutable std::vector<GuardTriangle> guard_triangles;  // scratch: collapse_crosses
-  std::vector<Point> before_move;  // per vertex slot: where undo_crossing_moves sends it back
-  std::vector<Vertex> to_check, to_undo;
-  void start_crossing_guard();  // (re)builds the grid of the current faces
-  void stop_crossing_guard();
-  mutable std::vector<Face> guard_candidates;  // scratch: triangles_cross_nearby
-  // A face near the n triangles that one of them crosses, leaving out the faces with a corner
-  // `replaced` (rewritten by the operation) and the faces skip0, skip1; invalid when none.
-  // `*which`: the triangle that crosses it. A degenerate triangle counts as crossing.
-  struct Crossing {
-    bool found = false;
-    size_t triangle = 0;
-    Face face;  // invalid for a degenerate triangle
-  };
-  Crossing triangles_cross_nearby(const GuardTriangle* ts, size_t n, Vertex replaced0, Vertex replaced1, Face skip0,
-                                  Face skip1) const;
-  // Whether face g (corners q, vertex ids) crosses one of the faces the operation replaces.
-  bool crossed_already(Face g, const Point q[3], const std::array<std::uint32_t, 3>& ids, Vertex replaced0,
-                       Vertex replaced1, Face skip0, Face skip1) const;
-  bool collapse_crosses(Halfedge h, const Point& target, bool both_ends_move) const;
-  bool flip_crosses(Edge e) const;
-  // v's fan as it is now (after v moved) against the faces near it.
-  Crossing fan_crossing(Vertex v) const;
-  bool fan_crosses(Vertex v) const { return fan_crossing(v).found; }
-  void note_flip(Edge e);              // keep the grid current after an edit
-  void note_fan_changed(Vertex v);
-  // After relaxation and projection: sends back the moved vertices of faces that cross or turn
-  // over (relaxed_from); returns how many.
-  size_t undo_crossing_moves();
+  // ---- no new self-intersections (crossing_guard.h), whole-mesh iterations only: a sculpting
+  // frame's region would need the faces around it, and its budget has no room for them (the
+  // frame path pays a test of active() per operation).
+  mutable CrossingGuard crossing_guard;  // (its tests keep scratch)
+  std::vector<Point> before_move;        // per vertex slot: relaxed_from, for undo_crossing_moves
+  void start_crossing_guard() {
+    if (whole_mesh) crossing_guard.start(mesh);
+  }
+  bool collapse_crosses(Halfedge h, const Point& target, bool both_ends_move) const {
+    return crossing_guard.collapse_crosses(mesh, h, target, both_ends_move);
+  }
+  void note_fan_changed(Vertex v) { crossing_guard.fan_changed(mesh, v); }
+  // After relaxation and projection: the moved vertices whose fans cross go back.
+  void undo_crossing_moves();
   // Picks how to collapse the short edge e (ratio: squared length / squared threshold): the
   // halfedge and whether both ends meet at the midpoint; false when no collapse is allowed.
   bool choose_collapse(Edge e, double ratio, Halfedge* h, bool* midpoint) const;

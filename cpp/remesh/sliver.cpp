@@ -263,7 +263,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     sizing[v] = best_p == start ? start_sizing : best_sizing;
     if (best_p == start) return false;
     // Better angles, but not at the price of a crossing with the surface around the fan.
-    if (fan_crosses(v)) {
+    if (crossing_guard.fan_crosses(mesh, v)) {
       mesh.position(v) = start;
       ref_hint[v] = start_hint;
       sizing[v] = start_sizing;
