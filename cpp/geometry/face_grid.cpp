@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <glm/common.hpp>
@@ -31,14 +32,24 @@ FaceGrid::CellRange FaceGrid::cells_of(const Point& lo, const Point& hi) const {
 }
 
 namespace {
+// The next float below (above) a finite f, by its bits: std::nextafter is a library call, and
+// a build rounds six coordinates per face.
+float float_step_down(float f) {
+  if (f == 0) return -std::numeric_limits<float>::denorm_min();
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  bits = f > 0 ? bits - 1 : bits + 1;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
 // x rounded to a float no larger (no smaller): boxes stored as floats still contain the face.
 float float_below(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) > x ? float_step_down(f) : f;
 }
 float float_above(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) < x ? -float_step_down(-f) : f;
 }
 }  // namespace
 

@@ -26,15 +26,35 @@ bool boxes_disjoint(const Point& alo, const Point& ahi, const Point& blo, const 
 // when the two can surely not cross: both turned the same way (normals within 60 degrees) and
 // their shadows on the plane across the mean normal apart by a margin far above rounding
 // (a common corner or edge allowed). A 3D meeting point off the common corners would cast a
-// shadow in both. Otherwise the exact test decides.
+// shadow in both. Or, first and for most pairs, one triangle's free corners all strictly on one
+// side of the other's plane. Otherwise the exact test decides.
 bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
                   const std::array<std::uint32_t, 3>& qid) {
-  const Vec3 np = glm::cross(p[1] - p[0], p[2] - p[0]), nq = glm::cross(q[1] - q[0], q[2] - q[0]);
-  const double d = glm::dot(np, nq);
-  if (!(d > 0 && d * d > 0.25 * glm::dot(np, np) * glm::dot(nq, nq))) return false;
   int shared = 0;
   for (std::uint32_t a : pid)
     for (std::uint32_t b : qid) shared += a == b;
+  const Vec3 np = glm::cross(p[1] - p[0], p[2] - p[0]), nq = glm::cross(q[1] - q[0], q[2] - q[0]);
+  // Most pairs on a curved part: the corners of one that are not shared all strictly on one
+  // side of the other's plane, by a margin far above rounding.
+  double scale2 = 0;
+  for (int k = 0; k < 3; ++k) scale2 = std::max({scale2, glm::dot(p[k] - p[0], p[k] - p[0]), glm::dot(q[k] - p[0], q[k] - p[0])});
+  auto one_side = [&](const Vec3& n, const Point& o, const Point* r, const std::array<std::uint32_t, 3>& rid,
+                      const std::array<std::uint32_t, 3>& oid) {
+    const double tol2 = 1e-20 * glm::dot(n, n) * scale2;
+    int sign = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (rid[k] == oid[0] || rid[k] == oid[1] || rid[k] == oid[2]) continue;
+      const double side = glm::dot(n, r[k] - o);
+      if (!(side * side > tol2)) return false;
+      const int s = side > 0 ? 1 : -1;
+      if (sign != 0 && s != sign) return false;
+      sign = s;
+    }
+    return sign != 0;
+  };
+  if (shared < 2 && (one_side(np, p[0], q, qid, pid) || one_side(nq, q[0], p, pid, qid))) return true;
+  const double d = glm::dot(np, nq);
+  if (!(d > 0 && d * d > 0.25 * glm::dot(np, np) * glm::dot(nq, nq))) return false;
   if (shared == 2) return true;  // across an edge they can only meet by folding onto each other
   // The shadows: 2D coordinates in a frame across n, which both normals make an acute angle
   // with (so both triangles turn counter-clockwise there). The axes need not be unit vectors: a
