@@ -28,12 +28,13 @@ bool boxes_disjoint(const Point& alo, const Point& ahi, const Point& blo, const 
 // (a common corner or edge allowed). A 3D meeting point off the common corners would cast a
 // shadow in both. Or, first and for most pairs, one triangle's free corners all strictly on one
 // side of the other's plane. Otherwise the exact test decides.
-bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
-                  const std::array<std::uint32_t, 3>& qid) {
+// np, nq: the normals cross(p1 - p0, p2 - p0) and the same of q (the relaxation's sweep meets
+// each face a dozen times and computes them once).
+bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Vec3& np, const Point q[3],
+                  const std::array<std::uint32_t, 3>& qid, const Vec3& nq) {
   int shared = 0;
   for (std::uint32_t a : pid)
     for (std::uint32_t b : qid) shared += a == b;
-  const Vec3 np = glm::cross(p[1] - p[0], p[2] - p[0]), nq = glm::cross(q[1] - q[0], q[2] - q[0]);
   // Most pairs on a curved part: the corners of one that are not shared all strictly on one
   // side of the other's plane, by a margin far above rounding.
   double scale2 = 0;
@@ -91,6 +92,13 @@ bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, con
     return false;
   };
   return separated_by_edges(px, py, pid, qx, qy, qid) || separated_by_edges(qx, qy, qid, px, py, pid);
+}
+
+Vec3 normal_of(const Point p[3]) { return glm::cross(p[1] - p[0], p[2] - p[0]); }
+
+bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
+                  const std::array<std::uint32_t, 3>& qid) {
+  return surely_apart(p, pid, normal_of(p), q, qid, normal_of(q));
 }
 
 std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f) {
@@ -262,11 +270,14 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
   auto moved = [&](std::uint32_t w) { return pos[w] != before[w]; };
   // Each face's corners once, in face order: the sweep below meets every face several times.
   face_corners_.resize(mesh.faces_size());
+  face_normals_.resize(mesh.faces_size());
   moved_face_.assign(mesh.faces_size(), 0);
   bool any = false;
   for (Face f : mesh.faces()) {
     const std::array<std::uint32_t, 3> c = corners(mesh, f);
     face_corners_[f.idx] = c;
+    const Point p[3] = {pos[c[0]], pos[c[1]], pos[c[2]]};
+    face_normals_[f.idx] = normal_of(p);
     moved_face_[f.idx] = moved(c[0]) || moved(c[1]) || moved(c[2]);
     any = any || moved_face_[f.idx];
   }
@@ -282,7 +293,9 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
     const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
     const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
     if (geometry::collinear(pf[0], pf[1], pf[2]) || geometry::collinear(pg[0], pg[1], pg[2])) return;
-    if (surely_apart(pf, cf, pg, cg) || !geometry::faces_intersect(pf, cf, pg, cg)) return;
+    if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||
+        !geometry::faces_intersect(pf, cf, pg, cg))
+      return;
     if (crossed_before(before, cf, cg)) return;  // not the moves' doing
     undo_corners(cf);
     undo_corners(cg);

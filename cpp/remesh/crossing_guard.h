@@ -78,6 +78,7 @@ class CrossingGuard {
   std::vector<Face> near_;
   std::vector<std::uint8_t> moved_face_;  // undo_crossing_moves: per face slot
   std::vector<std::array<std::uint32_t, 3>> face_corners_;  // undo_crossing_moves: per face slot
+  std::vector<Vec3> face_normals_;                          // undo_crossing_moves: per face slot
   std::vector<Vertex> to_check_, to_undo_;
 };
 
