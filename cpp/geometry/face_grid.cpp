@@ -181,12 +181,25 @@ void FaceGrid::insert_fan(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
 }
 
 
-void FaceGrid::gather(const Point& lo, const Point& hi, std::vector<mesh::Face>& out) {
+bool FaceGrid::gather(const Point& lo, const Point& hi, std::vector<mesh::Face>& out, size_t& budget) {
+  const CellRange r = cells_of(lo, hi);
+  const size_t cells = cell_count(r);
+  if (cells > budget) {
+    budget = 0;
+    return false;
+  }
+  budget -= cells;
   if (++run_ == 0) {
     std::fill(seen_.begin(), seen_.end(), 0u);
     run_ = 1;
   }
+  bool within = true;
   auto take = [&](const Entry& en) {
+    if (budget == 0) {
+      within = false;
+      return;
+    }
+    --budget;
     // The box first: a stale entry that misses must not hide the face's current one.
     if (en.hi[0] < lo.x || en.lo[0] > hi.x || en.hi[1] < lo.y || en.lo[1] > hi.y || en.hi[2] < lo.z || en.lo[2] > hi.z)
       return;
@@ -194,10 +207,11 @@ void FaceGrid::gather(const Point& lo, const Point& hi, std::vector<mesh::Face>&
     seen_[en.face] = run_;
     out.push_back(mesh::Face(en.face));
   };
-  for_each_bucket(cells_of(lo, hi), [&](std::uint32_t b) {
-    for (std::uint32_t e = start_[b]; e < start_[b + 1]; ++e) take(entries_[e]);
-    for (std::uint32_t e = overflow_head_[b]; e != kNone; e = overflow_[e].next) take(overflow_[e]);
+  for_each_bucket(r, [&](std::uint32_t b) {
+    for (std::uint32_t e = start_[b]; e < start_[b + 1] && within; ++e) take(entries_[e]);
+    for (std::uint32_t e = overflow_head_[b]; e != kNone && within; e = overflow_[e].next) take(overflow_[e]);
   });
+  return within;
 }
 
 bool FaceGrid::overflowed() const { return !overflow_.empty(); }

@@ -28,18 +28,23 @@ class FaceGrid {
   // The faces incident to v, after v moved or its fan changed.
   void insert_fan(const mesh::SurfaceMesh& mesh, mesh::Vertex v);
   // Appends to `out`, once each, the faces whose box as inserted touches the closed box
-  // [lo, hi]; some may be deleted or have moved since (callers check).
-  void gather(const Point& lo, const Point& hi, std::vector<mesh::Face>& out);
+  // [lo, hi]; some may be deleted or have moved since (callers check). `budget` counts the cells
+  // and entries looked at; returns false, with `out` incomplete, when it runs out.
+  bool gather(const Point& lo, const Point& hi, std::vector<mesh::Face>& out, size_t& budget);
   // Calls visit(f, g) for each pair of distinct faces whose boxes touch, in one sweep over the
   // cells (cache-friendly, where a gather per face jumps around memory); right after build().
   // A pair is visited in the cell where its boxes' overlap starts (and again only when two of
-  // its cells share a hash bucket).
+  // its cells share a hash bucket). Stops when visit returns false; returns whether it ran to
+  // the end. `budget` counts the pairs of entries looked at, and stops the sweep at zero: a fan
+  // of thousands of needles in one cell has millions.
   template <class Visit>
-  void for_each_overlapping_pair(Visit&& visit) const {
+  bool for_each_overlapping_pair(size_t& budget, Visit&& visit) const {
     const std::uint32_t buckets = mask_ + 1;
     for (std::uint32_t b = 0; b < buckets; ++b)
       for (std::uint32_t i = start_[b]; i < start_[b + 1]; ++i)
         for (std::uint32_t j = i + 1; j < start_[b + 1]; ++j) {
+          if (budget == 0) return false;
+          --budget;
           const Entry &e = entries_[i], &f = entries_[j];
           if (e.face == f.face || e.hi[0] < f.lo[0] || f.hi[0] < e.lo[0] || e.hi[1] < f.lo[1] || f.hi[1] < e.lo[1] ||
               e.hi[2] < f.lo[2] || f.hi[2] < e.lo[2])
@@ -47,8 +52,9 @@ class FaceGrid {
           const Point corner(std::max(e.lo[0], f.lo[0]), std::max(e.lo[1], f.lo[1]), std::max(e.lo[2], f.lo[2]));
           const CellRange c = cells_of(corner, corner);
           if (bucket(c.lo[0], c.lo[1], c.lo[2]) != b) continue;
-          visit(mesh::Face(e.face), mesh::Face(f.face));
+          if (!visit(mesh::Face(e.face), mesh::Face(f.face))) return false;
         }
+    return true;
   }
   bool overflowed() const;  // inserts since the last build
 
@@ -76,6 +82,10 @@ class FaceGrid {
     for (std::int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
       for (std::int64_t j = r.lo[1]; j <= r.hi[1]; ++j)
         for (std::int64_t k = r.lo[2]; k <= r.hi[2]; ++k) visit(bucket(i, j, k));
+  }
+  static size_t cell_count(const CellRange& r) {
+    return static_cast<size_t>(r.hi[0] - r.lo[0] + 1) * static_cast<size_t>(r.hi[1] - r.lo[1] + 1) *
+           static_cast<size_t>(r.hi[2] - r.lo[2] + 1);
   }
 
   bool built_ = false;

@@ -15,6 +15,11 @@ namespace {
 // an operation's new triangles a few. Measured on dragon.off at the default settings: 1.5 or 2
 // mean edges cost 10-15 % more time (more cells per query, more entries per face), 4 about as much.
 constexpr double kCellEdges = 3.0;
+// The work one grid allows (cells, entries and pairs of faces looked at), per face and in all: bounded work on
+// inputs that defeat the grid (cgal/degtri_sliding: fans of thousands of needles in a few cells
+// ran 30 s and more). The dragon at the defaults looks at about 30 pairs per face per grid.
+constexpr size_t kWorkPerFace = 256;
+constexpr size_t kMinWork = 1000000;
 
 bool boxes_disjoint(const Point& alo, const Point& ahi, const Point& blo, const Point& bhi) {
   return ahi.x < blo.x || alo.x > bhi.x || ahi.y < blo.y || alo.y > bhi.y || ahi.z < blo.z || alo.z > bhi.z;
@@ -121,6 +126,7 @@ void CrossingGuard::start(const SurfaceMesh& mesh) {
   // The mean edge: where the collapses that follow make faces larger, the cells grow with them
   // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
   grid_.build(mesh, kCellEdges * sum / static_cast<double>(n));
+  work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
 }
 
 void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
@@ -156,12 +162,20 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
     for (const Point& p : ts[i].p) lo = glm::min(lo, p), hi = glm::max(hi, p);
   }
   near_.clear();
-  grid_.gather(lo, hi, near_);
+  if (!grid_.gather(lo, hi, near_, work_left_)) {  // spent: from here on the operations are not checked
+    grid_.clear();
+    return crossing;
+  }
   const auto* hc = mesh.halfedge_connectivity_data();
   const mesh::Halfedge* fh = mesh.face_halfedge_data();
   const std::uint8_t* fdel = mesh.face_deleted_data();
   const Point* pos = mesh.positions().data();
   for (const Face g : near_) {
+    if (work_left_ == 0) {  // spent: from here on the operations are not checked
+      grid_.clear();
+      return crossing;
+    }
+    --work_left_;
     if (g.idx >= mesh.faces_size() || fdel[g.idx] || g == skip0 || g == skip1) continue;
     const Halfedge h0 = fh[g.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
     const std::array<std::uint32_t, 3> ids = {hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};
@@ -271,6 +285,7 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
   // Each face's corners once, in face order: the sweep below meets every face several times.
   face_corners_.resize(mesh.faces_size());
   face_normals_.resize(mesh.faces_size());
+  face_degenerate_.resize(mesh.faces_size());
   moved_face_.assign(mesh.faces_size(), 0);
   bool any = false;
   for (Face f : mesh.faces()) {
@@ -278,6 +293,7 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
     face_corners_[f.idx] = c;
     const Point p[3] = {pos[c[0]], pos[c[1]], pos[c[2]]};
     face_normals_[f.idx] = normal_of(p);
+    face_degenerate_[f.idx] = geometry::collinear(p[0], p[1], p[2]);
     moved_face_[f.idx] = moved(c[0]) || moved(c[1]) || moved(c[2]);
     any = any || moved_face_[f.idx];
   }
@@ -288,17 +304,18 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
       if (moved(w)) to_undo_.push_back(Vertex(w));
   };
   to_undo_.clear();
-  grid_.for_each_overlapping_pair([&](Face f, Face g) {
-    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return;
+  grid_.for_each_overlapping_pair(work_left_, [&](Face f, Face g) {
+    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return true;
+    if (face_degenerate_[f.idx] || face_degenerate_[g.idx]) return true;
     const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
     const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
-    if (geometry::collinear(pf[0], pf[1], pf[2]) || geometry::collinear(pg[0], pg[1], pg[2])) return;
     if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||
         !geometry::faces_intersect(pf, cf, pg, cg))
-      return;
-    if (crossed_before(before, cf, cg)) return;  // not the moves' doing
+      return true;
+    if (crossed_before(before, cf, cg)) return true;  // not the moves' doing
     undo_corners(cf);
     undo_corners(cg);
+    return true;
   });
   size_t undone = 0;
   for (;;) {

@@ -29,7 +29,9 @@ class CrossingGuard {
   using Face = mesh::Face;
 
   // (Re)builds the grid over the mesh's faces; until stop(), the tests below are live and every
-  // edit must be reported (fan_changed, flipped). Without it every test passes.
+  // edit must be reported (fan_changed, flipped). Without it every test passes. The work of one
+  // grid is bounded (a fixed number of face pairs per face): once spent, the guard stops itself
+  // until the next start(), and the operations go unchecked (inputs that defeat the grid only).
   void start(const SurfaceMesh& mesh);
   void stop() { grid_.clear(); }
   bool active() const { return grid_.built(); }
@@ -79,6 +81,8 @@ class CrossingGuard {
   std::vector<std::uint8_t> moved_face_;  // undo_crossing_moves: per face slot
   std::vector<std::array<std::uint32_t, 3>> face_corners_;  // undo_crossing_moves: per face slot
   std::vector<Vec3> face_normals_;                          // undo_crossing_moves: per face slot
+  std::vector<std::uint8_t> face_degenerate_;               // undo_crossing_moves: per face slot
+  size_t work_left_ = 0;  // pairs of faces the current grid may still look at (start())
   std::vector<Vertex> to_check_, to_undo_;
 };
 

@@ -169,7 +169,14 @@ TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
              b[1].z < a[0].z);
   };
   std::vector<std::vector<bool>> visited(m.faces_size(), std::vector<bool>(m.faces_size(), false));
-  grid.for_each_overlapping_pair([&](Face f, Face g) { visited[f.idx][g.idx] = visited[g.idx][f.idx] = true; });
+  size_t budget = 1000000;
+  EXPECT_TRUE(grid.for_each_overlapping_pair(budget, [&](Face f, Face g) {
+    visited[f.idx][g.idx] = visited[g.idx][f.idx] = true;
+    return true;
+  }));
+  size_t small_budget = 10;  // the sweep's work bound
+  EXPECT_FALSE(grid.for_each_overlapping_pair(small_budget, [](Face, Face) { return true; }));
+  EXPECT_EQ(small_budget, 0u);
   size_t pairs = 0;
   for (Face f : m.faces())
     for (Face g : m.faces())
@@ -182,10 +189,10 @@ TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
   const Vertex corner(0);
   m.position(corner) = Point(0, 0, 40);
   std::vector<Face> found;
-  grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found);
+  EXPECT_TRUE(grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found, budget));
   EXPECT_TRUE(found.empty());
   grid.insert_fan(m, corner);
-  grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found);
+  EXPECT_TRUE(grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found, budget));
   std::vector<Face> fan;
   for (Face f : m.faces(corner)) fan.push_back(f);
   std::sort(found.begin(), found.end());
