@@ -217,6 +217,13 @@ bool triangles_intersect(const Point p[3], const Point q[3]) {
 
 bool faces_intersect(const std::vector<Point>& points, const std::array<std::uint32_t, 3>& t,
                      const std::array<std::uint32_t, 3>& u) {
+  const Point tp[3] = {points[t[0]], points[t[1]], points[t[2]]};
+  const Point up[3] = {points[u[0]], points[u[1]], points[u[2]]};
+  return faces_intersect(tp, t, up, u);
+}
+
+bool faces_intersect(const Point tp[3], const std::array<std::uint32_t, 3>& t, const Point up[3],
+                     const std::array<std::uint32_t, 3>& u) {
   int shared = 0, t_at = -1, u_at = -1;  // positions of a shared vertex in t and u
   int t_shared_mask = 0, u_shared_mask = 0;
   for (int i = 0; i < 3; ++i)
@@ -225,8 +232,6 @@ bool faces_intersect(const std::vector<Point>& points, const std::array<std::uin
         ++shared, t_at = i, u_at = j;
         t_shared_mask |= 1 << i, u_shared_mask |= 1 << j;
       }
-  const Point tp[3] = {points[t[0]], points[t[1]], points[t[2]]};
-  const Point up[3] = {points[u[0]], points[u[1]], points[u[2]]};
   if (shared == 0) return triangles_intersect(tp, up);
   if (shared == 3) return true;  // the same triangle twice
   if (shared == 2) {

@@ -37,6 +37,11 @@ bool collinear(const Point& a, const Point& b, const Point& c);
 bool faces_intersect(const std::vector<Point>& points, const std::array<std::uint32_t, 3>& t,
                      const std::array<std::uint32_t, 3>& u);
 
+// The same for triangles given by their corners and vertex ids (equal ids mean a shared vertex):
+// for a triangle that does not exist yet, such as one a remeshing operation would create.
+bool faces_intersect(const Point tp[3], const std::array<std::uint32_t, 3>& t, const Point up[3],
+                     const std::array<std::uint32_t, 3>& u);
+
 struct SelfIntersectionReport {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // face indices, first < second, sorted
   size_t degenerate_faces = 0;                                 // collinear faces, left out of the test

@@ -32,11 +32,11 @@ bool Remesher::Impl::flip_geometry_ok(Edge e, bool require_flat) const {
   if (k1 <= 1e-12 * scale || k2 <= 1e-12 * scale) return false;
   Vec3 avg = n1 + n2;
   if (glm::dot(m1, avg) <= 0 || glm::dot(m2, avg) <= 0) return false;
-  if (!require_flat) return true;
+  if (!require_flat) return !crossing_guard.flip_crosses(mesh, e);
   // The new triangles must agree with each other at least as well as the old ones did.
   double old_cos = (l1 > 0 && l2 > 0) ? glm::dot(n1, n2) / (l1 * l2) : -1.0;
   double new_cos = glm::dot(m1, m2) / (k1 * k2);
-  return new_cos >= std::min(old_cos, 0.9) - 1e-12 && new_cos > 0.5;
+  return new_cos >= std::min(old_cos, 0.9) - 1e-12 && new_cos > 0.5 && !crossing_guard.flip_crosses(mesh, e);
 }
 
 // SurfaceMesh::is_flip_ok with the valences this pass keeps up to date, and the search for
@@ -62,6 +62,7 @@ void Remesher::Impl::flip_counting(Edge e) {
   const auto& o = hc[(e.idx << 1) | 1u];
   const Index corner[4] = {o.to.idx, h.to.idx, hc[h.next.idx].to.idx, hc[o.next.idx].to.idx};  // a, b lose; c, d gain
   mesh.flip(e);
+  crossing_guard.flipped(mesh, e);
   for (int i = 0; i < 4; ++i) {
     const int change = i < 2 ? -1 : 1;
     valence[corner[i]] += change;
@@ -364,7 +365,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         // next passes even that out, while the sliver would stay forever. Never a fold-over.
         for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])})
           if (collapse_geometry_ok(h, mesh.position(mesh.to_vertex(h)), false, false, 0.5) &&
-              collapse_topology_ok(h)) {
+              collapse_topology_ok(h) && !collapse_crosses(h, mesh.position(mesh.to_vertex(h)), false)) {
             if (collapse_with_mirror(h, false) == 0) continue;
             done = true;
             break;
@@ -377,7 +378,11 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
           const Edge image = flip_partner(e);
           if (image.is_valid() && (image == e || mesh.is_flip_ok(image))) {
             mesh.flip(e);
-            if (image != e) mesh.flip(image);
+            crossing_guard.flipped(mesh, e);
+            if (image != e) {
+              mesh.flip(image);
+              crossing_guard.flipped(mesh, image);
+            }
             done = true;
           }
         }

@@ -98,7 +98,7 @@ size_t Remesher::Impl::collapse_with_mirror(Halfedge h, bool midpoint) {
     if (!midpoint) {
       if (!movable(v0) || !movable(v1) || vclass[v0] != kFree || vclass[v1] != kFree) return 0;
       const Point mid = 0.5 * (mesh.position(v0) + mesh.position(v1));
-      if (!collapse_geometry_ok(h, mid, true) || !collapse_topology_ok(h)) return 0;
+      if (!collapse_geometry_ok(h, mid, true) || !collapse_topology_ok(h) || collapse_crosses(h, mid, true)) return 0;
     }
     apply_collapse(h, true);
     mirror[v1] = v1;

@@ -91,15 +91,17 @@ void Remesher::log_deleted_faces(std::vector<Face>* log) { impl_->deleted_faces_
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;
   stats.splits = split_long_edges();
+  start_crossing_guard();  // whole-mesh iterations: from here on no operation may cross the surface
   stats.collapses = collapse_short_edges();
   stats.flips = flip_edges();
   stats.flips += flip_for_angles(kPoorAngleDeg * M_PI / 180.0);
   const bool guarded = do_project && has_reference;
-  if (guarded) remember_positions();
+  if (guarded || whole_mesh) remember_positions();
   keep_fan_shapes = guarded;
   relax_vertices();
   keep_fan_shapes = false;
   if (guarded) project_vertices_guarded();
+  undo_crossing_moves();
   fix_bad_faces(kSliverAngleDeg);
   return stats;
 }
@@ -110,8 +112,10 @@ IterationStats Remesher::iterate() {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
     m.enter_whole_mesh();
     m.build_reference();
+    m.start_crossing_guard();
     m.tolerance_scale = Impl::kCleanupTolerance;
     m.fix_bad_faces(kDegenerateAngleDeg);
+    m.crossing_guard.stop();
     m.tolerance_scale = 1.0;
   }
   m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
@@ -122,6 +126,7 @@ IterationStats Remesher::iterate() {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
+  m.crossing_guard.stop();
   m.leave_whole_mesh();
   return stats;
 }
@@ -255,7 +260,9 @@ void Remesher::end_region_sequence(const std::vector<Vertex>& vertices) {
 size_t Remesher::polish() {
   Impl& m = *impl_;
   m.enter_whole_mesh();
+  m.start_crossing_guard();
   const size_t moved = m.place_sliver_vertices(kPlacedSliverAngleDeg, false);
+  m.crossing_guard.stop();
   m.leave_whole_mesh();
   return moved;
 }

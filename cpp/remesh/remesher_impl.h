@@ -12,6 +12,7 @@
 #include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
 #include "mesh/vertex_mask.h"
+#include "remesh/crossing_guard.h"
 #include "remesh/remesher.h"
 
 namespace adasculpt::remesh {
@@ -316,6 +317,20 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<FanShape> fan_shapes;
   void remember_positions();
   size_t project_vertices_guarded();
+  // ---- no new self-intersections (crossing_guard.h), whole-mesh iterations only: a sculpting
+  // frame's region would need the faces around it, and its budget has no room for them (the
+  // frame path pays a test of active() per operation).
+  mutable CrossingGuard crossing_guard;  // (its tests keep scratch)
+  std::vector<Point> before_move;        // per vertex slot: relaxed_from, for undo_crossing_moves
+  void start_crossing_guard() {
+    if (whole_mesh) crossing_guard.start(mesh);
+  }
+  bool collapse_crosses(Halfedge h, const Point& target, bool both_ends_move) const {
+    return crossing_guard.collapse_crosses(mesh, h, target, both_ends_move);
+  }
+  void note_fan_changed(Vertex v) { crossing_guard.fan_changed(mesh, v); }
+  // After relaxation and projection: the moved vertices whose fans cross go back.
+  void undo_crossing_moves();
   // Picks how to collapse the short edge e (ratio: squared length / squared threshold): the
   // halfedge and whether both ends meet at the midpoint; false when no collapse is allowed.
   bool choose_collapse(Edge e, double ratio, Halfedge* h, bool* midpoint) const;

@@ -127,4 +127,13 @@ size_t Remesher::Impl::project_vertices_guarded() {
   return undone;
 }
 
+void Remesher::Impl::undo_crossing_moves() {
+  if (!whole_mesh || relaxed_from.size() != scope_vertices.size()) return;
+  mesh::resize_scratch(before_move, mesh.vertices_size());
+  const Point* pos = mesh.positions().data();
+  std::copy(pos, pos + mesh.vertices_size(), before_move.begin());  // (masked vertices stay)
+  for (size_t i = 0; i < scope_vertices.size(); ++i) before_move[scope_vertices[i].idx] = relaxed_from[i];
+  crossing_guard.undo_crossing_moves(mesh, before_move);
+}
+
 }  // namespace adasculpt::remesh

@@ -261,7 +261,16 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     mesh.position(v) = best_p;
     ref_hint[v] = best_hint;
     sizing[v] = best_p == start ? start_sizing : best_sizing;
-    return best_p != start;
+    if (best_p == start) return false;
+    // Better angles, but not at the price of a crossing with the surface around the fan.
+    if (crossing_guard.fan_crosses(mesh, v)) {
+      mesh.position(v) = start;
+      ref_hint[v] = start_hint;
+      sizing[v] = start_sizing;
+      return false;
+    }
+    note_fan_changed(v);
+    return true;
   };
 
   // ---- which vertices: the corners of slivers, and in necks the corners of crossing triangles

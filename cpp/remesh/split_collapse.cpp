@@ -90,6 +90,7 @@ Vertex Remesher::Impl::split_edge(Edge e, const Point& p) {
     ref_hint[v] = h;
   }
   scope_vertices.push_back(v);
+  note_fan_changed(v);
   return v;
 }
 
@@ -295,9 +296,13 @@ bool Remesher::Impl::choose_collapse(Edge e, double ratio, Halfedge* h_out, bool
   Halfedge h0 = mesh.halfedge(e, 0), h1 = mesh.halfedge(e, 1);
   bool ok0 = collapse_allowed(h0), ok1 = collapse_allowed(h1);
   *midpoint = false;
-  *h_out = ok0 ? h0 : h1;
-  if (ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0)) *h_out = h1;
-  if (ok0 || ok1) return true;
+  // The crossing test (the costly one) for the better of the two first, the other if it fails.
+  const bool prefer1 = ok0 && ok1 && collapse_quality(h1) > collapse_quality(h0);
+  for (const Halfedge h : {prefer1 ? h1 : h0, prefer1 ? h0 : h1})
+    if ((h == h0 ? ok0 : ok1) && !collapse_crosses(h, mesh.position(mesh.to_vertex(h)), false)) {
+      *h_out = h;
+      return true;
+    }
   // Neither end can take the other's place (typically on a thin or strongly curved part):
   // meeting in the middle often can, and leaves no sliver behind.
   // Only for edges far below the threshold: elsewhere endpoint collapses grade better.
@@ -305,7 +310,7 @@ bool Remesher::Impl::choose_collapse(Edge e, double ratio, Halfedge* h_out, bool
   Vertex a = mesh.from_vertex(h0), b = mesh.to_vertex(h0);
   if (!movable(a) || !movable(b) || vclass[a] != kFree || vclass[b] != kFree) return false;
   Point mid = 0.5 * (mesh.position(a) + mesh.position(b));
-  if (!collapse_geometry_ok(h0, mid, true) || !collapse_topology_ok(h0)) return false;
+  if (!collapse_geometry_ok(h0, mid, true) || !collapse_topology_ok(h0) || collapse_crosses(h0, mid, true)) return false;
   *h_out = h0;
   *midpoint = true;
   return true;
@@ -330,7 +335,9 @@ void Remesher::Impl::apply_collapse(Halfedge h, bool midpoint) {
     if (!mesh.is_boundary(h)) deleted_faces_log->push_back(mesh.face(h));
     if (!mesh.is_boundary(o)) deleted_faces_log->push_back(mesh.face(o));
   }
+  const Vertex survivor = mesh.to_vertex(h);
   mesh.collapse(h);
+  note_fan_changed(survivor);
 }
 
 // Uses the scope's edges as the split pass left them (every edge of the scope); the flip passes

@@ -1,0 +1,118 @@
+#pragma once
+// A hash grid of a changing mesh's face bounding boxes: which faces may touch a given box. Built
+// once over every live face; a face whose box changes (a collapse, flip or vertex move) is
+// inserted again, and its entries with the old box stay behind as harmless stale candidates
+// (callers test the face's current geometry). The arrays are reused from one build to the next,
+// so once warmed up neither building nor updating allocates.
+//
+// A bounding volume hierarchy answers the same question but must be refitted or rebuilt after
+// each edit; cells answer it at the cost of one append per cell the new box covers.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "mesh/types.h"
+
+namespace adasculpt::geometry {
+
+class FaceGrid {
+ public:
+  // Every live face of the mesh, in cells of the given edge length (> 0).
+  void build(const mesh::SurfaceMesh& mesh, double cell_size);
+  void clear() { built_ = false; }
+  bool built() const { return built_; }
+  // Adds f's current box (f live). Rebuilds from scratch when stale entries pile up, and with
+  // larger cells when the faces grew (the collapses of a coarsening pass).
+  void insert(const mesh::SurfaceMesh& mesh, mesh::Face f);
+  // The faces incident to v, after v moved or its fan changed.
+  void insert_fan(const mesh::SurfaceMesh& mesh, mesh::Vertex v);
+  // Appends to `out`, once each, the faces whose box as inserted touches the closed box
+  // [lo, hi]; some may be deleted or have moved since (callers check). `budget` counts the cells
+  // and entries looked at; returns false, with `out` incomplete, when it runs out.
+  bool gather(const Point& lo, const Point& hi, std::vector<mesh::Face>& out, size_t& budget);
+  // Calls visit(f, g) for each pair of distinct faces whose boxes touch, in one sweep over the
+  // cells (cache-friendly, where a gather per face jumps around memory); right after build().
+  // A pair is visited in the cell where its boxes' overlap starts (and again only when two of
+  // its cells share a hash bucket). Stops when visit returns false; returns whether it ran to
+  // the end. `budget` counts the pairs of entries looked at, and stops the sweep at zero: a fan
+  // of thousands of needles in one cell has millions.
+  template <class Visit>
+  bool for_each_overlapping_pair(size_t& budget, Visit&& visit) const {
+    const std::uint32_t buckets = mask_ + 1;
+    for (std::uint32_t b = 0; b < buckets; ++b)
+      for (std::uint32_t i = start_[b]; i < start_[b + 1]; ++i)
+        for (std::uint32_t j = i + 1; j < start_[b + 1]; ++j) {
+          if (budget == 0) return false;
+          --budget;
+          const Entry &e = entries_[i], &f = entries_[j];
+          if (e.face == f.face || e.hi[0] < f.lo[0] || f.hi[0] < e.lo[0] || e.hi[1] < f.lo[1] || f.hi[1] < e.lo[1] ||
+              e.hi[2] < f.lo[2] || f.hi[2] < e.lo[2])
+            continue;
+          const Point corner(std::max(e.lo[0], f.lo[0]), std::max(e.lo[1], f.lo[1]), std::max(e.lo[2], f.lo[2]));
+          const CellRange c = cells_of(corner, corner);
+          if (bucket(c.lo[0], c.lo[1], c.lo[2]) != b) continue;
+          if (!visit(mesh::Face(e.face), mesh::Face(f.face))) return false;
+        }
+    return true;
+  }
+  bool overflowed() const;  // inserts since the last build
+
+ private:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  // The box is stored rounded outwards to floats: most candidates are rejected by the entry
+  // alone, without reading the mesh.
+  struct Entry {
+    float lo[3], hi[3];
+    std::uint32_t face, next;  // next: the bucket's next overflow entry (inserts after the build)
+  };
+  struct CellRange {
+    std::int64_t lo[3], hi[3];
+  };
+  CellRange cells_of(const Point& lo, const Point& hi) const;
+  std::uint32_t bucket(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    const std::uint64_t h = static_cast<std::uint64_t>(i) * 73856093u ^ static_cast<std::uint64_t>(j) * 19349663u ^
+                            static_cast<std::uint64_t>(k) * 83492791u;
+    return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
+  }
+  Entry entry_of(const mesh::SurfaceMesh& mesh, mesh::Face f, CellRange* cells) const;
+  Entry entry_of_box(std::uint32_t face, const Point& lo, const Point& hi, CellRange* cells) const;
+  template <class Visit>
+  void for_each_bucket(const CellRange& r, Visit&& visit) const {
+    for (std::int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
+      for (std::int64_t j = r.lo[1]; j <= r.hi[1]; ++j)
+        for (std::int64_t k = r.lo[2]; k <= r.hi[2]; ++k) visit(bucket(i, j, k));
+  }
+  static size_t cell_count(const CellRange& r) {
+    return static_cast<size_t>(r.hi[0] - r.lo[0] + 1) * static_cast<size_t>(r.hi[1] - r.lo[1] + 1) *
+           static_cast<size_t>(r.hi[2] - r.lo[2] + 1);
+  }
+
+  bool built_ = false;
+  double cell_size_ = 1, inv_cell_ = 1;
+  std::uint32_t mask_ = 0;
+  size_t rebuild_at_ = 0;  // overflow entries beyond which insert() rebuilds
+  // Cells a new box spans along its longest axis, summed over recent inserts (see insert()).
+  size_t span_sum_ = 0, inserts_ = 0;
+  // The build's entries, bucket by bucket (bucket b: entries_[start_[b]] to entries_[start_[b + 1]]):
+  // a query reads each bucket's entries in one run. Later inserts go to per-bucket lists.
+  std::vector<std::uint32_t> start_;
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> overflow_head_;  // per bucket: its last inserted entry in overflow_
+  std::vector<Entry> overflow_;
+  // Where build() put each face's entries, for updates in place: most edits (a flip, a collapse's
+  // fan, a relaxed vertex) leave a face's box in the same cells. The overflow lists, the other
+  // way, cost a cache miss per entry to every query that walks them (half a remesh's queries'
+  // time before). count 0: none, or more cells than kMaxPlaced.
+  static constexpr int kMaxPlaced = 8;
+  struct Placed {
+    std::uint32_t count = 0;
+    std::uint32_t at[kMaxPlaced];
+  };
+  std::vector<Placed> placed_;
+  std::vector<Point> box_lo_, box_hi_;  // build()'s scratch: per face slot
+  std::vector<std::uint32_t> seen_;  // per face slot: == run_ when gathered by the current query
+  std::uint32_t run_ = 0;
+};
+
+}  // namespace adasculpt::geometry

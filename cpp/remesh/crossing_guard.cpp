@@ -1,0 +1,343 @@
+#include "remesh/crossing_guard.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "geometry/self_intersections.h"
+
+namespace adasculpt::remesh {
+
+namespace {
+// Cells as long as this many mean edges: a face's box covers one or two cells along each axis,
+// an operation's new triangles a few. Measured on dragon.off at the default settings: 1.5 or 2
+// mean edges cost 10-15 % more time (more cells per query, more entries per face), 4 about as much.
+constexpr double kCellEdges = 3.0;
+// The work one grid allows (cells, entries and pairs of faces looked at), per face and in all: bounded work on
+// inputs that defeat the grid (cgal/degtri_sliding: fans of thousands of needles in a few cells
+// ran 30 s and more). The dragon at the defaults looks at about 30 pairs per face per grid.
+constexpr size_t kWorkPerFace = 256;
+constexpr size_t kMinWork = 1000000;
+
+bool boxes_disjoint(const Point& alo, const Point& ahi, const Point& blo, const Point& bhi) {
+  return ahi.x < blo.x || alo.x > bhi.x || ahi.y < blo.y || alo.y > bhi.y || ahi.z < blo.z || alo.z > bhi.z;
+}
+
+// A fast floating-point answer for most pairs of neighbouring faces, which are (nearly) coplanar
+// on flat and smooth parts: there every orientation is (nearly) zero, the exact predicates fall
+// back to expansion arithmetic, and fandisk.off's remeshing took six times as long. True only
+// when the two can surely not cross: both turned the same way (normals within 60 degrees) and
+// their shadows on the plane across the mean normal apart by a margin far above rounding
+// (a common corner or edge allowed). A 3D meeting point off the common corners would cast a
+// shadow in both. Or, first and for most pairs, one triangle's free corners all strictly on one
+// side of the other's plane. Otherwise the exact test decides.
+// np, nq: the normals cross(p1 - p0, p2 - p0) and the same of q (the relaxation's sweep meets
+// each face a dozen times and computes them once).
+bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Vec3& np, const Point q[3],
+                  const std::array<std::uint32_t, 3>& qid, const Vec3& nq) {
+  int shared = 0;
+  for (std::uint32_t a : pid)
+    for (std::uint32_t b : qid) shared += a == b;
+  // Most pairs on a curved part: the corners of one that are not shared all strictly on one
+  // side of the other's plane, by a margin far above rounding.
+  double scale2 = 0;
+  for (int k = 0; k < 3; ++k) scale2 = std::max({scale2, glm::dot(p[k] - p[0], p[k] - p[0]), glm::dot(q[k] - p[0], q[k] - p[0])});
+  auto one_side = [&](const Vec3& n, const Point& o, const Point* r, const std::array<std::uint32_t, 3>& rid,
+                      const std::array<std::uint32_t, 3>& oid) {
+    const double tol2 = 1e-20 * glm::dot(n, n) * scale2;
+    int sign = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (rid[k] == oid[0] || rid[k] == oid[1] || rid[k] == oid[2]) continue;
+      const double side = glm::dot(n, r[k] - o);
+      if (!(side * side > tol2)) return false;
+      const int s = side > 0 ? 1 : -1;
+      if (sign != 0 && s != sign) return false;
+      sign = s;
+    }
+    return sign != 0;
+  };
+  if (shared < 2 && (one_side(np, p[0], q, qid, pid) || one_side(nq, q[0], p, pid, qid))) return true;
+  const double d = glm::dot(np, nq);
+  if (!(d > 0 && d * d > 0.25 * glm::dot(np, np) * glm::dot(nq, nq))) return false;
+  if (shared == 2) return true;  // across an edge they can only meet by folding onto each other
+  // The shadows: 2D coordinates in a frame across n, which both normals make an acute angle
+  // with (so both triangles turn counter-clockwise there). The axes need not be unit vectors: a
+  // linear map keeps every side and separation, and the margin is measured in the same units.
+  const Vec3 n = np + nq;
+  const Vec3 u = glm::cross(n, std::abs(n.x) < std::abs(n.y) ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+  const Vec3 w = glm::cross(n, u);
+  double px[3], py[3], qx[3], qy[3];
+  for (int k = 0; k < 3; ++k) {
+    px[k] = glm::dot(p[k], u), py[k] = glm::dot(p[k], w);
+    qx[k] = glm::dot(q[k], u), qy[k] = glm::dot(q[k], w);
+  }
+  double scale = 0;
+  for (int k = 0; k < 3; ++k)
+    scale = std::max({scale, std::abs(px[k] - px[0]), std::abs(py[k] - py[0]), std::abs(qx[k] - px[0]),
+                      std::abs(qy[k] - py[0])});
+  const double margin = 1e-9 * scale * scale;
+  // A separating line through an edge of either shadow: the other triangle's corners beyond it,
+  // but for the corners the two share (on the line, which allows them).
+  auto separated_by_edges = [&](const double* ax, const double* ay, const std::array<std::uint32_t, 3>& aid,
+                                const double* bx, const double* by, const std::array<std::uint32_t, 3>& bid) {
+    const double area = (ax[1] - ax[0]) * (ay[2] - ay[0]) - (ay[1] - ay[0]) * (ax[2] - ax[0]);
+    if (!(area > margin)) return false;  // not counter-clockwise by a margin: no answer here
+    for (int e = 0; e < 3; ++e) {
+      const int i = e, j = (e + 1) % 3;
+      bool beyond = true;
+      for (int k = 0; k < 3 && beyond; ++k) {
+        if (bid[k] == aid[i] || bid[k] == aid[j]) continue;
+        const double side = (ax[j] - ax[i]) * (by[k] - ay[i]) - (ay[j] - ay[i]) * (bx[k] - ax[i]);
+        beyond = side < -margin;
+      }
+      if (beyond) return true;
+    }
+    return false;
+  };
+  return separated_by_edges(px, py, pid, qx, qy, qid) || separated_by_edges(qx, qy, qid, px, py, pid);
+}
+
+Vec3 normal_of(const Point p[3]) { return glm::cross(p[1] - p[0], p[2] - p[0]); }
+
+bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
+                  const std::array<std::uint32_t, 3>& qid) {
+  return surely_apart(p, pid, normal_of(p), q, qid, normal_of(q));
+}
+
+std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f) {
+  mesh::Vertex c[3];
+  mesh.face_vertices(f, c);
+  return {c[0].idx, c[1].idx, c[2].idx};
+}
+}  // namespace
+
+void CrossingGuard::start(const SurfaceMesh& mesh) {
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const Point* pos = mesh.positions().data();
+  double sum = 0;
+  size_t n = 0;
+  for (Edge e : mesh.edges()) {
+    sum += glm::length(pos[hc[e.idx << 1].to.idx] - pos[hc[(e.idx << 1) | 1u].to.idx]);
+    ++n;
+  }
+  if (n == 0) return;
+  // The mean edge: where the collapses that follow make faces larger, the cells grow with them
+  // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
+  grid_.build(mesh, kCellEdges * sum / static_cast<double>(n));
+  work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
+}
+
+void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
+  if (!grid_.built()) return;
+  grid_.insert(mesh, mesh.face(mesh.halfedge(e, 0)));
+  grid_.insert(mesh, mesh.face(mesh.halfedge(e, 1)));
+}
+
+// The faces near the candidates are gathered once for all of them (an operation's new
+// triangles are neighbours: their boxes overlap), then each is read once from the mesh.
+namespace {
+// Whether the faces with corners a and b crossed at the positions `before` (per vertex slot).
+bool crossed_before(const std::vector<Point>& before, const std::array<std::uint32_t, 3>& a,
+                    const std::array<std::uint32_t, 3>& b) {
+  const Point pa[3] = {before[a[0]], before[a[1]], before[a[2]]}, pb[3] = {before[b[0]], before[b[1]], before[b[2]]};
+  if (geometry::collinear(pa[0], pa[1], pa[2]) || geometry::collinear(pb[0], pb[1], pb[2])) return false;
+  return geometry::faces_intersect(pa, a, pb, b);
+}
+}  // namespace
+
+CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n,
+                                                      Vertex replaced0, Vertex replaced1, Face skip0, Face skip1,
+                                                      const std::vector<Point>* before) {
+  Crossing crossing;
+  if (n == 0) return crossing;
+  Point lo = ts[0].p[0], hi = ts[0].p[0];
+  for (size_t i = 0; i < n; ++i) {
+    if (geometry::collinear(ts[i].p[0], ts[i].p[1], ts[i].p[2])) {  // no orientation: never created
+      crossing.found = true;
+      crossing.triangle = i;
+      return crossing;
+    }
+    for (const Point& p : ts[i].p) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  }
+  near_.clear();
+  if (!grid_.gather(lo, hi, near_, work_left_)) {  // spent: from here on the operations are not checked
+    grid_.clear();
+    return crossing;
+  }
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* fh = mesh.face_halfedge_data();
+  const std::uint8_t* fdel = mesh.face_deleted_data();
+  const Point* pos = mesh.positions().data();
+  for (const Face g : near_) {
+    if (work_left_ == 0) {  // spent: from here on the operations are not checked
+      grid_.clear();
+      return crossing;
+    }
+    --work_left_;
+    if (g.idx >= mesh.faces_size() || fdel[g.idx] || g == skip0 || g == skip1) continue;
+    const Halfedge h0 = fh[g.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
+    const std::array<std::uint32_t, 3> ids = {hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};
+    if (ids[0] == replaced0.idx || ids[1] == replaced0.idx || ids[2] == replaced0.idx || ids[0] == replaced1.idx ||
+        ids[1] == replaced1.idx || ids[2] == replaced1.idx)
+      continue;  // a face the operation rewrites
+    const Point q[3] = {pos[ids[0]], pos[ids[1]], pos[ids[2]]};
+    const Point qlo = glm::min(q[0], glm::min(q[1], q[2])), qhi = glm::max(q[0], glm::max(q[1], q[2]));
+    if (boxes_disjoint(qlo, qhi, lo, hi)) continue;  // (the grid's boxes are rounded outwards, or stale)
+    bool checked_degenerate = false;
+    for (size_t i = 0; i < n; ++i) {
+      const Candidate& t = ts[i];
+      if (g == t.face) continue;
+      const Point tlo = glm::min(t.p[0], glm::min(t.p[1], t.p[2])), thi = glm::max(t.p[0], glm::max(t.p[1], t.p[2]));
+      if (boxes_disjoint(qlo, qhi, tlo, thi)) continue;
+      if (!checked_degenerate) {
+        checked_degenerate = true;
+        if (geometry::collinear(q[0], q[1], q[2])) break;  // left out, as the self-intersection count does
+      }
+      if (surely_apart(t.p, t.ids, q, ids) || !geometry::faces_intersect(t.p, t.ids, q, ids)) continue;
+      if (crossed_already(mesh, g, q, ids, replaced0, replaced1, skip0, skip1)) break;
+      if (before && crossed_before(*before, t.ids, ids)) continue;
+      crossing.found = true;
+      crossing.triangle = i;
+      crossing.face = g;
+      return crossing;
+    }
+  }
+  return crossing;
+}
+
+bool CrossingGuard::crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3],
+                                    const std::array<std::uint32_t, 3>& ids, Vertex replaced0, Vertex replaced1,
+                                    Face skip0, Face skip1) const {
+  auto crosses_g = [&](Face f) {
+    if (!f.is_valid() || f == g) return false;
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    const Point p[3] = {mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]};
+    return !geometry::collinear(p[0], p[1], p[2]) && geometry::faces_intersect(p, c, q, ids);
+  };
+  for (const Vertex r : {replaced0, replaced1})
+    if (r.is_valid())
+      for (Face f : mesh.faces(r))
+        if (crosses_g(f)) return true;
+  return crosses_g(skip0) || crosses_g(skip1);
+}
+
+bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
+  if (!grid_.built()) return false;
+  const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  candidates_.clear();
+  auto add_fan = [&](Vertex centre, Vertex other) {
+    for (Halfedge out : mesh.halfedges(centre)) {
+      if (mesh.is_boundary(out)) continue;
+      const Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
+      if (w == other || w2 == other) continue;  // one of the two triangles that vanish
+      candidates_.push_back({{target, mesh.position(w), mesh.position(w2)}, {v1.idx, w.idx, w2.idx}, Face()});
+    }
+  };
+  add_fan(v0, v1);
+  if (both_ends_move) add_fan(v1, v0);
+  if (first_crossing(mesh, candidates_.data(), candidates_.size(), v0, both_ends_move ? v1 : Vertex(), Face(),
+                     Face())
+          .found)
+    return true;
+  // The new fan against itself: triangles meeting only at the survivor may still cross.
+  for (size_t i = 0; i < candidates_.size(); ++i)
+    for (size_t j = i + 1; j < candidates_.size(); ++j)
+      if (geometry::faces_intersect(candidates_[i].p, candidates_[i].ids, candidates_[j].p, candidates_[j].ids))
+        return true;
+  return false;
+}
+
+bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
+  if (!grid_.built()) return false;
+  const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
+  const Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
+  const Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
+  const Point &pa = mesh.position(a), &pb = mesh.position(b), &pc = mesh.position(c), &pd = mesh.position(d);
+  // The two new triangles share the edge cd; the flip's own test keeps them from folding.
+  const Candidate t[2] = {{{pa, pd, pc}, {a.idx, d.idx, c.idx}, Face()}, {{pd, pb, pc}, {d.idx, b.idx, c.idx}, Face()}};
+  return first_crossing(mesh, t, 2, Vertex(), Vertex(), mesh.face(h), mesh.face(o)).found;
+}
+
+CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Vertex v,
+                                                    const std::vector<Point>* before) {
+  candidates_.clear();
+  if (!grid_.built()) return {};
+  for (Face f : mesh.faces(v)) {
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    candidates_.push_back({{mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]}, c, f});
+  }
+  return first_crossing(mesh, candidates_.data(), candidates_.size(), Vertex(), Vertex(), Face(), Face(), before);
+}
+
+// The first round checks every pair of touching boxes in one sweep over the grid's cells: a
+// search around each of the tens of thousands of moved vertices cost four times as much
+// (memory-bound); the later rounds search around the few vertices sent back.
+// Only new crossings count: a pair that crossed before the moves (an input that crosses itself,
+// its crossings multiplied by the splits) keeps its moves, which often untangle it; sending
+// them back froze cgal/corner_poly.off's crossing corner (1,616 new pairs at epsilon 0.5 %). For
+// the same reason a face that turns over without crossing anything stays (bunny.off's two
+// crossing pairs are untangled that way).
+size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before) {
+  const Point* pos = mesh.positions().data();
+  auto moved = [&](std::uint32_t w) { return pos[w] != before[w]; };
+  // Each face's corners once, in face order: the sweep below meets every face several times.
+  face_corners_.resize(mesh.faces_size());
+  face_normals_.resize(mesh.faces_size());
+  face_degenerate_.resize(mesh.faces_size());
+  moved_face_.assign(mesh.faces_size(), 0);
+  bool any = false;
+  for (Face f : mesh.faces()) {
+    const std::array<std::uint32_t, 3> c = corners(mesh, f);
+    face_corners_[f.idx] = c;
+    const Point p[3] = {pos[c[0]], pos[c[1]], pos[c[2]]};
+    face_normals_[f.idx] = normal_of(p);
+    face_degenerate_[f.idx] = geometry::collinear(p[0], p[1], p[2]);
+    moved_face_[f.idx] = moved(c[0]) || moved(c[1]) || moved(c[2]);
+    any = any || moved_face_[f.idx];
+  }
+  if (!any) return 0;
+  start(mesh);
+  auto undo_corners = [&](const std::array<std::uint32_t, 3>& c) {
+    for (std::uint32_t w : c)
+      if (moved(w)) to_undo_.push_back(Vertex(w));
+  };
+  to_undo_.clear();
+  grid_.for_each_overlapping_pair(work_left_, [&](Face f, Face g) {
+    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return true;
+    if (face_degenerate_[f.idx] || face_degenerate_[g.idx]) return true;
+    const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
+    const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
+    if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||
+        !geometry::faces_intersect(pf, cf, pg, cg))
+      return true;
+    if (crossed_before(before, cf, cg)) return true;  // not the moves' doing
+    undo_corners(cf);
+    undo_corners(cg);
+    return true;
+  });
+  size_t undone = 0;
+  for (;;) {
+    to_check_.clear();
+    for (const Vertex w : to_undo_) {
+      if (!moved(w.idx)) continue;  // listed twice, or back already
+      mesh.position(w) = before[w.idx];
+      grid_.insert_fan(mesh, w);
+      to_check_.push_back(w);
+      ++undone;
+    }
+    if (to_check_.empty()) break;
+    // The fans of the vertices sent back, against their neighbours' new places.
+    to_undo_.clear();
+    for (const Vertex v : to_check_) {
+      const Crossing crossing = fan_crossing(mesh, v, &before);
+      if (!crossing.found) continue;
+      undo_corners(candidates_[crossing.triangle].ids);
+      if (crossing.face.is_valid()) undo_corners(corners(mesh, crossing.face));
+    }
+  }
+  return undone;
+}
+
+}  // namespace adasculpt::remesh

@@ -1,0 +1,201 @@
+// The crossing guard of whole-mesh remeshing (issue 17 item 2): each operation it watches, set up
+// so that the operation passes its one-ring tests but would push a triangle through a sheet a
+// little apart, is refused; without that sheet the same operation passes. Each case also checks
+// that doing the operation really makes a crossing, so the guard is not refusing for nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/common.hpp>
+
+#include "geometry/face_grid.h"
+#include "geometry/self_intersections.h"
+#include "mesh/build_from_triangles.h"
+#include "remesh/crossing_guard.h"
+
+using namespace adasculpt;
+using mesh::Face;
+using mesh::SurfaceMesh;
+using mesh::Vertex;
+using Points = std::vector<std::array<double, 3>>;
+using Triangles = std::vector<std::array<std::uint32_t, 3>>;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A hexagonal fan at z = 0 around vertex 0 at the origin; ring vertex 1 at (1, 0) is lowered to
+// z = -0.6. With `obstacle`, a separate small triangle at z = -0.15 under the far half of the
+// fan (x from -0.8 to -0.3): below the fan as it is, above the triangles that collapsing vertex
+// 0 into vertex 1 makes (they slope down from the far rim to vertex 1).
+SurfaceMesh dented_fan(bool obstacle) {
+  Points p = {{0, 0, 0}};
+  for (int k = 0; k < 6; ++k) p.push_back({std::cos(k * kPi / 3), std::sin(k * kPi / 3), k == 0 ? -0.6 : 0.0});
+  Triangles t;
+  for (std::uint32_t k = 0; k < 6; ++k) t.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  if (obstacle) {
+    p.push_back({-0.8, 0, -0.15});
+    p.push_back({-0.3, -0.1, -0.15});
+    p.push_back({-0.3, 0.1, -0.15});
+    t.push_back({7, 8, 9});
+  }
+  return mesh::build_from_triangles(p, t);
+}
+
+// A roof: the ridge a = 0, b = 1 at z = 0.5, the eaves c = 2 and d = 3 at z = 0. Flipping the
+// ridge makes a valley along c-d. With `obstacle`, a flat triangle at z = 0.25 along the ridge
+// (|y| <= 0.2, under the roof) that the valley's triangles cut (they are below 0.25 near x = 1).
+SurfaceMesh roof(bool obstacle) {
+  Points p = {{0, 0, 0.5}, {2, 0, 0.5}, {1, 1, 0}, {1, -1, 0}};
+  Triangles t = {{0, 1, 2}, {1, 0, 3}};
+  if (obstacle) {
+    p.push_back({0.4, 0, 0.25});
+    p.push_back({1.6, -0.2, 0.25});
+    p.push_back({1.6, 0.2, 0.25});
+    t.push_back({4, 5, 6});
+  }
+  return mesh::build_from_triangles(p, t);
+}
+
+mesh::Halfedge halfedge_between(const SurfaceMesh& m, std::uint32_t from, std::uint32_t to) {
+  const mesh::Halfedge h = m.find_halfedge(Vertex(from), Vertex(to));
+  EXPECT_TRUE(h.is_valid());
+  return h;
+}
+
+size_t crossings(const SurfaceMesh& m) { return geometry::self_intersections(m).pairs.size(); }
+
+}  // namespace
+
+TEST(CrossingGuard, RefusesACollapseThroughANearbySheet) {
+  for (bool obstacle : {true, false}) {
+    SCOPED_TRACE(obstacle ? "with the sheet below" : "alone");
+    SurfaceMesh m = dented_fan(obstacle);
+    ASSERT_EQ(crossings(m), 0u);
+    remesh::CrossingGuard guard;
+    guard.start(m);
+    const mesh::Halfedge h = halfedge_between(m, 0, 1);
+    EXPECT_EQ(guard.collapse_crosses(m, h, m.position(Vertex(1)), false), obstacle);
+    ASSERT_TRUE(m.is_collapse_ok(h));
+    m.collapse(h);
+    EXPECT_EQ(crossings(m) > 0, obstacle);
+  }
+}
+
+TEST(CrossingGuard, RefusesAFlipThroughANearbySheet) {
+  for (bool obstacle : {true, false}) {
+    SCOPED_TRACE(obstacle ? "with the sheet under the ridge" : "alone");
+    SurfaceMesh m = roof(obstacle);
+    ASSERT_EQ(crossings(m), 0u);
+    remesh::CrossingGuard guard;
+    guard.start(m);
+    const mesh::Edge ridge = m.edge(halfedge_between(m, 0, 1));
+    EXPECT_EQ(guard.flip_crosses(m, ridge), obstacle);
+    m.flip(ridge);
+    EXPECT_EQ(crossings(m) > 0, obstacle);
+  }
+}
+
+// A crossing the replaced faces had already is the input's, not the operation's: the collapse
+// that keeps it is allowed (else no operation could clean up next to an input that crosses itself).
+TEST(CrossingGuard, AllowsACollapseNextToACrossingItDidNotMake) {
+  SurfaceMesh m = dented_fan(true);
+  m.position(Vertex(7)).z = 0.1;  // the obstacle's tip now pierces the fan as it is
+  const size_t before = crossings(m);
+  ASSERT_GT(before, 0u);
+  remesh::CrossingGuard guard;
+  guard.start(m);
+  EXPECT_FALSE(guard.collapse_crosses(m, halfedge_between(m, 0, 1), m.position(Vertex(1)), false));
+}
+
+// Moves made together (the relaxation and the projection): the vertex whose fan now crosses goes
+// back (with the other moved corners of the faces that cross, none here), a harmless move
+// elsewhere stays, and the result has no crossing.
+TEST(CrossingGuard, SendsBackOnlyTheMovesThatCross) {
+  SurfaceMesh m = dented_fan(true);
+  std::vector<Point> before = m.positions();
+  m.position(Vertex(0)).z = -0.3;   // the fan's centre through the obstacle
+  m.position(Vertex(2)).z = 0.05;   // a rim vertex whose faces are nowhere near it
+  ASSERT_GT(crossings(m), 0u);
+  remesh::CrossingGuard guard;
+  EXPECT_EQ(guard.undo_crossing_moves(m, before), 1u);
+  EXPECT_EQ(m.position(Vertex(0)), before[0]);
+  EXPECT_EQ(m.position(Vertex(2)).z, 0.05);
+  EXPECT_EQ(crossings(m), 0u);
+  EXPECT_FALSE(guard.fan_crosses(m, Vertex(0)));
+}
+
+TEST(CrossingGuard, TestsNothingWhenStopped) {
+  SurfaceMesh m = roof(true);
+  remesh::CrossingGuard guard;
+  EXPECT_FALSE(guard.active());
+  EXPECT_FALSE(guard.flip_crosses(m, m.edge(halfedge_between(m, 0, 1))));
+  guard.start(m);
+  EXPECT_TRUE(guard.active());
+  guard.stop();
+  EXPECT_FALSE(guard.flip_crosses(m, m.edge(halfedge_between(m, 0, 1))));
+}
+
+// The grid finds a face at its new place after an insert (its entry at the old place is stale
+// and harmless), and the sweep over its cells visits every pair of touching boxes.
+TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
+  Points p;
+  Triangles t;
+  constexpr std::uint32_t kN = 12;  // a wavy kN x kN grid of points, two triangles per square
+  for (std::uint32_t i = 0; i < kN; ++i)
+    for (std::uint32_t j = 0; j < kN; ++j) p.push_back({double(i), double(j), 0.3 * std::sin(0.9 * i + 0.4 * j)});
+  for (std::uint32_t i = 0; i + 1 < kN; ++i)
+    for (std::uint32_t j = 0; j + 1 < kN; ++j) {
+      const std::uint32_t a = i * kN + j;
+      t.push_back({a, a + kN, a + kN + 1});
+      t.push_back({a, a + kN + 1, a + 1});
+    }
+  SurfaceMesh m = mesh::build_from_triangles(p, t);
+  geometry::FaceGrid grid;
+  grid.build(m, 1.0);
+  auto box = [&](Face f) {
+    Vertex v[3];
+    m.face_vertices(f, v);
+    std::array<Point, 2> b = {m.position(v[0]), m.position(v[0])};
+    for (Vertex w : v) b[0] = glm::min(b[0], m.position(w)), b[1] = glm::max(b[1], m.position(w));
+    return b;
+  };
+  auto touch = [](const std::array<Point, 2>& a, const std::array<Point, 2>& b) {
+    return !(a[1].x < b[0].x || b[1].x < a[0].x || a[1].y < b[0].y || b[1].y < a[0].y || a[1].z < b[0].z ||
+             b[1].z < a[0].z);
+  };
+  std::vector<std::vector<bool>> visited(m.faces_size(), std::vector<bool>(m.faces_size(), false));
+  size_t budget = 1000000;
+  EXPECT_TRUE(grid.for_each_overlapping_pair(budget, [&](Face f, Face g) {
+    visited[f.idx][g.idx] = visited[g.idx][f.idx] = true;
+    return true;
+  }));
+  size_t small_budget = 10;  // the sweep's work bound
+  EXPECT_FALSE(grid.for_each_overlapping_pair(small_budget, [](Face, Face) { return true; }));
+  EXPECT_EQ(small_budget, 0u);
+  size_t pairs = 0;
+  for (Face f : m.faces())
+    for (Face g : m.faces())
+      if (f.idx < g.idx && touch(box(f), box(g))) {
+        ++pairs;
+        EXPECT_TRUE(visited[f.idx][g.idx]) << f.idx << " " << g.idx;
+      }
+  EXPECT_GT(pairs, m.n_faces());
+  // Vertex 0 far up: its face is found there only after the insert.
+  const Vertex corner(0);
+  m.position(corner) = Point(0, 0, 40);
+  std::vector<Face> found;
+  EXPECT_TRUE(grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found, budget));
+  EXPECT_TRUE(found.empty());
+  grid.insert_fan(m, corner);
+  EXPECT_TRUE(grid.gather(Point(-0.1, -0.1, 39.9), Point(0.1, 0.1, 40.1), found, budget));
+  std::vector<Face> fan;
+  for (Face f : m.faces(corner)) fan.push_back(f);
+  std::sort(found.begin(), found.end());
+  std::sort(fan.begin(), fan.end());
+  EXPECT_EQ(found, fan);
+}
