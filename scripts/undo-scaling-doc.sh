@@ -2,7 +2,8 @@
 # Writes docs/undo-and-scaling.md from the stroke-scaling benchmark (tests/bench/stroke_scaling_bench.cpp):
 #   bash scripts/undo-scaling-doc.sh            runs build/native/adasculpt_bench --benchmark_filter=StrokeScaling
 #   bash scripts/undo-scaling-doc.sh out.txt    uses a saved run's output instead
-# Baseline figures (BASELINE=file: the same benchmark's output on an older build) go in a second table.
+# Baseline figures (BASELINE=file: the same benchmark's output on an older build; by default main at f486e7c,
+# before the undo log, saved in docs/data/undo-scaling-f486e7c.txt) go in a second table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=docs/undo-and-scaling.md
@@ -59,7 +60,8 @@ mem=$(echo "$run" | grep '^stroke-scaling undo-memory' || true)
       "$(echo "$mem" | field p95)" "$(echo "$mem" | field max)" "$(echo "$mem" | field steps_kept)" \
       "$(echo "$mem" | field total_MB)" "$(echo "$mem" | field fits_512MB)"
   fi
-  if [ -n "${BASELINE:-}" ] && [ -f "$BASELINE" ]; then
+  BASELINE=${BASELINE:-docs/data/undo-scaling-f486e7c.txt}
+  if [ -f "$BASELINE" ]; then
     echo
     echo "## Before (main at f486e7c: a deep copy of the mesh per undo step, compaction after strokes)"
     echo
