@@ -85,6 +85,10 @@ class BrushDeformer {
                              const std::vector<Vertex>* mirror = nullptr);
   // Vertices moved by the last apply() (without the ring).
   size_t moved() const { return moved_; }
+  // Sizes the per-vertex-slot arrays for n slots (zero-filled). Called with each new mesh, so a
+  // stroke's first stamp touches only its region (sizing them there cost a session's first stroke
+  // on 1.1M triangles several milliseconds); apply() still grows them when the mesh outgrows n.
+  void grow(size_t n);
 
  private:
   void gather(const SurfaceMesh& mesh, const StampSpec& s, double radius, BrushFalloff falloff);
@@ -93,7 +97,6 @@ class BrushDeformer {
   // Inflate: vertex normals of inside_ smoothed over about `displacement` into smooth_normal_.
   void smooth_normals(const SurfaceMesh& mesh, double displacement);
   bool marked(Vertex v) const { return v.idx < mark_.size() && mark_[v.idx] == run_; }
-  void grow(size_t n);
 
   // Per vertex slot, valid when mark_ == run_ / in_stamp_ == stamp_run_ (never cleared in full).
   std::vector<std::uint32_t> mark_, in_stamp_;

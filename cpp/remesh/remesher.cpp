@@ -88,6 +88,18 @@ void Remesher::set_options(const RemeshOptions& options) {
 void Remesher::reset_reference() { impl_->reference_stale = true; }
 void Remesher::log_deleted_faces(std::vector<Face>* log) { impl_->deleted_faces_log = log; }
 
+void Remesher::reserve_scratch() {
+  Impl& m = *impl_;
+  const size_t nv = m.mesh.vertices_size(), nf = m.mesh.faces_size();
+  mesh::resize_scratch(m.face_quality, nf);
+  mesh::resize_scratch(m.face_seen, nf, 0u);
+  mesh::resize_scratch(m.relax_faces, nf);
+  mesh::resize_scratch(m.valence, nv);
+  mesh::resize_scratch(m.valence_excess, nv);
+  mesh::resize_scratch(m.kappa, nv);
+  mesh::resize_scratch(m.kappa_known, nv, std::uint8_t(0));
+}
+
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;
   stats.splits = split_long_edges();

@@ -117,6 +117,12 @@ class Remesher {
   // A renderer keeping one triangle per face slot learns from it which slots to empty: the
   // deleted faces are out of the connectivity and not reachable from the vertices left.
   void log_deleted_faces(std::vector<mesh::Face>* log);
+  // Sizes the per-slot scratch arrays of the region passes (face quality and marks, relaxation
+  // terms, valences, curvature) to the mesh's slots now, zero-filled, so that a sculpting frame
+  // touches only its region's entries: sized in the first frame that needs them, they cost a
+  // stroke on 1.1M triangles tens of milliseconds of allocation and page faults (issue 18). A
+  // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch).
+  void reserve_scratch();
   // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
   const RemeshOptions& options() const;

@@ -173,7 +173,11 @@ const RenderChanges& RenderBuffers::rebuild(const SurfaceMesh& m) {
   const std::uint32_t nv = std::uint32_t(m.vertices_size());
   const std::uint32_t nf = std::uint32_t(m.faces_size());
   last_ = RenderChanges{};
-  last_.reallocated = reserve(nv, nf);
+  // Room for the slots the next strokes add (as SurfaceMesh::reserve_room_for_edits): sized
+  // exactly, the first split after a load reallocated every buffer and sent them all again, which
+  // cost the first stroke on 1.1M triangles ~15 ms natively (a full upload in the browser; issue 18).
+  auto room = [](size_t n) { return n + n / 8 + 16; };
+  last_.reallocated = reserve(room(nv), room(nf));
   for (std::uint32_t i = 0; i < nv; ++i) {
     Vertex v(i);
     if (m.is_deleted(v)) {

@@ -181,6 +181,14 @@ struct Session::Impl {
       remesher_kept = true;
     }
     mesh.reserve_room_for_edits();  // a restored undo step is a copy without room for the next stroke
+    // The per-slot scratch of strokes, sized (and zero-filled) with the mesh: sized in a stroke,
+    // they made each session's first stroke on 1.1M triangles cost ~15 ms more than on 70k, and
+    // the process's first ~55 ms more (allocation and first-touch page faults; issue 18).
+    if (remesher) remesher->reserve_scratch();
+    brush.deformer().grow(mesh.vertices_size());
+    const size_t marks = mesh.vertices_size() * 5 / 4 + 16;  // as measure_component and move_step_touched
+    if (component_mark.size() < marks) component_mark.resize(marks, 0u);
+    if (step_mark.size() < marks) step_mark.resize(marks, 0u);
     // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
     // at the first stroke or press after the load, where it would be a hitch.
     slot_tree.invalidate();

@@ -11,6 +11,7 @@
 //   build/native/adasculpt_bench --benchmark_filter=StrokeScaling
 // scripts/undo-scaling-doc.sh turns the output into docs/undo-and-scaling.md.
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -307,5 +308,77 @@ void BM_StrokeScalingUndoMemory(benchmark::State& state) {
               steps_kept == 64 && total_bytes <= (size_t(512) << 20) ? "yes" : "no");
 }
 BENCHMARK(BM_StrokeScalingUndoMemory)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+
+namespace {
+
+long minor_faults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+// Per-stroke trace (issue 18): the scene's 12 strokes in several sessions on one loaded scene, each
+// stroke timed in its parts: brush_begin, the stamps (with their viewer frames), brush_end (the undo
+// step) and its viewer frame. Tells a per-mesh cost in a session's first stroke (or in the process's
+// first) from the strokes' own work; the loading is outside every figure. Sessions: range(1). Each
+// stroke also shows its thread CPU time and the process's minor page faults (first touches of memory).
+void BM_StrokeScalingTrace(benchmark::State& state) {
+  const int copies = int(state.range(0)), sessions = int(state.range(1));
+  const mesh::SurfaceMesh m = scene(copies);
+  const std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
+  std::vector<double> first_ms, later_ms, beyond_ms;
+  for (auto _ : state) {
+    for (int run = 0; run < sessions; ++run) {
+      sculpt::Session s;
+      s.load(m);
+      set_bunny_detail(s);
+      sculpt::RenderBuffers rb;
+      viewer_frame(s, rb);
+      std::printf("stroke-trace copies=%d session=%d ms (begin+stamps[their viewer frames]+end+frame):", copies, run);
+      double beyond = 0;
+      for (size_t k = 0; k < strokes.size(); ++k) {
+        const long faults = minor_faults();
+        const double cpu = thread_cpu_ms();
+        auto t = Clock::now();
+        s.brush_begin(strokes[k].settings);
+        const double begin = ms_since(t);
+        t = Clock::now();
+        double frames = 0;  // the viewer frames after the stamps (inside `stamps`)
+        for (const Point& p : strokes[k].path) {
+          s.brush_stamp(p);
+          const auto tf = Clock::now();
+          viewer_frame(s, rb);
+          frames += ms_since(tf);
+        }
+        const double stamps = ms_since(t);
+        t = Clock::now();
+        s.brush_end();
+        const double end = ms_since(t);
+        t = Clock::now();
+        viewer_frame(s, rb);
+        const double frame = ms_since(t);
+        const double total = begin + stamps + end + frame;
+        beyond += total;
+        (k == 0 ? first_ms : later_ms).push_back(total);
+        std::printf(" %.2f(%.2f+%.2f[frames %.2f]+%.2f+%.2f cpu %.2f pf %ld)", total, begin, stamps, frames, end, frame,
+                    thread_cpu_ms() - cpu,
+                    minor_faults() - faults);
+      }
+      beyond_ms.push_back(beyond);
+      std::printf(" | strokes_ms=%.1f\n", beyond);
+    }
+  }
+  state.counters["first_stroke_ms_median"] = percentile(first_ms, 0.5);
+  state.counters["later_stroke_ms_max"] = percentile(later_ms, 1.0);
+  state.counters["strokes_ms_median"] = percentile(beyond_ms, 0.5);
+}
+BENCHMARK(BM_StrokeScalingTrace)->Args({1, 3})->Args({16, 3})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -210,3 +210,34 @@ TEST(RenderBuffersSession, AFramesWorkFollowsTheChangeNotTheMesh) {
   // And both strokes' frames together touch far fewer slots than one pass over the scene.
   EXPECT_LT(work[1], faces[1] / 4);
 }
+
+// The buffers made for a loaded mesh have room for the slots the next strokes add: the first stroke
+// after a load neither reallocates them (every view into them would go stale and the viewer would
+// send the whole mesh again, a per-mesh cost in the first stroke; issue 18) nor moves them.
+TEST(RenderBuffersSession, TheFirstStrokeAfterALoadKeepsTheBuffers) {
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(4));
+  s.set_settings({{"min_length", "1%"}, {"max_length", "2%"}});  // finer than the sphere: strokes split
+  sculpt::RenderBuffers rb;
+  ASSERT_TRUE(rb.update(s.mesh(), s.changes()).rebuilt);  // the load's full upload
+  s.clear_changes();
+  rb.take_pending();
+  const size_t faces_before = s.mesh().faces_size();
+  const float* positions = rb.positions();
+  const std::uint32_t* indices = rb.indices();
+  const sculpt::BrushStroke st = stroke_at(Point(0.0), Vec3(0, 0, 1), Vec3(0, 1, 0), deform::BrushTool::Draw, 0.3);
+  s.brush_begin(st.settings);
+  for (const Point& p : st.path) {
+    s.brush_stamp(p);
+    const sculpt::RenderChanges& c = rb.update(s.mesh(), s.changes());
+    s.clear_changes();
+    EXPECT_FALSE(c.reallocated);
+    EXPECT_FALSE(c.rebuilt);
+  }
+  s.brush_end();
+  EXPECT_FALSE(rb.update(s.mesh(), s.changes()).reallocated);
+  EXPECT_GT(s.mesh().faces_size(), faces_before) << "the stroke was meant to add faces";
+  EXPECT_EQ(rb.positions(), positions);
+  EXPECT_EQ(rb.indices(), indices);
+  expect_matches_rebuild(s.mesh(), rb, "after the first stroke");
+}
