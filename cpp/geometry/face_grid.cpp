@@ -25,8 +25,8 @@ constexpr size_t kMaxMeanSpan = 3;
 FaceGrid::CellRange FaceGrid::cells_of(const Point& lo, const Point& hi) const {
   CellRange r;
   for (int a = 0; a < 3; ++a) {
-    r.lo[a] = static_cast<std::int64_t>(std::floor(lo[a] * inv_cell_));
-    r.hi[a] = static_cast<std::int64_t>(std::floor(hi[a] * inv_cell_));
+    r.lo[a] = cell_of(lo[a]);
+    r.hi[a] = cell_of(hi[a]);
   }
   return r;
 }
@@ -107,19 +107,22 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
   }
   start_.assign(buckets + 1, 0u);
   const std::uint8_t* fdel = mesh.face_deleted_data();
+  // Each face's entry and cells once, kept for the fill pass: computing them (float rounding,
+  // floors) was a fifth of a build.
+  box_entry_.resize(n_slots);
+  box_cells_.resize(n_slots);
   for (size_t f = 0; f < n_slots; ++f) {
     if (fdel[f]) continue;
-    CellRange r;
-    entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &r);
-    for_each_bucket(r, [&](std::uint32_t b) { ++start_[b + 1]; });
+    box_entry_[f] = entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &box_cells_[f]);
+    for_each_bucket(box_cells_[f], [&](std::uint32_t b) { ++start_[b + 1]; });
   }
   for (size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
   entries_.resize(start_[buckets]);
   placed_.resize(n_slots);
   for (size_t f = 0; f < n_slots; ++f) {
     if (fdel[f]) continue;
-    CellRange r;
-    const Entry entry = entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &r);
+    const CellRange& r = box_cells_[f];
+    const Entry& entry = box_entry_[f];
     Placed& placed = placed_[f];
     placed.count = 0;
     bool all = true;

@@ -8,6 +8,7 @@
 // A bounding volume hierarchy answers the same question but must be refitted or rebuilt after
 // each edit; cells answer it at the cost of one append per cell the new box covers.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -49,9 +50,9 @@ class FaceGrid {
           if (e.face == f.face || e.hi[0] < f.lo[0] || f.hi[0] < e.lo[0] || e.hi[1] < f.lo[1] || f.hi[1] < e.lo[1] ||
               e.hi[2] < f.lo[2] || f.hi[2] < e.lo[2])
             continue;
-          const Point corner(std::max(e.lo[0], f.lo[0]), std::max(e.lo[1], f.lo[1]), std::max(e.lo[2], f.lo[2]));
-          const CellRange c = cells_of(corner, corner);
-          if (bucket(c.lo[0], c.lo[1], c.lo[2]) != b) continue;
+          if (bucket(cell_of(std::max(e.lo[0], f.lo[0])), cell_of(std::max(e.lo[1], f.lo[1])),
+                     cell_of(std::max(e.lo[2], f.lo[2]))) != b)
+            continue;
           if (!visit(mesh::Face(e.face), mesh::Face(f.face))) return false;
         }
     return true;
@@ -70,6 +71,9 @@ class FaceGrid {
     std::int64_t lo[3], hi[3];
   };
   CellRange cells_of(const Point& lo, const Point& hi) const;
+  // The cell index along an axis of a coordinate, as cells_of computes it (the pair sweep's
+  // dedup needs one point's cell: half the floors of cells_of).
+  std::int64_t cell_of(double x) const { return static_cast<std::int64_t>(std::floor(x * inv_cell_)); }
   std::uint32_t bucket(std::int64_t i, std::int64_t j, std::int64_t k) const {
     const std::uint64_t h = static_cast<std::uint64_t>(i) * 73856093u ^ static_cast<std::uint64_t>(j) * 19349663u ^
                             static_cast<std::uint64_t>(k) * 83492791u;
@@ -111,6 +115,8 @@ class FaceGrid {
   };
   std::vector<Placed> placed_;
   std::vector<Point> box_lo_, box_hi_;  // build()'s scratch: per face slot
+  std::vector<Entry> box_entry_;        // build()'s scratch: per face slot
+  std::vector<CellRange> box_cells_;    // build()'s scratch: per face slot
   std::vector<std::uint32_t> seen_;  // per face slot: == run_ when gathered by the current query
   std::uint32_t run_ = 0;
 };
