@@ -123,3 +123,28 @@ TEST(SculptRedraw, OtherToolsUndoneAndDrawnAgainGiveTheSameMesh) {
     }
   }
 }
+
+// A grab right after a stroke or a load works with the strokes' kept remesher (no pass over the
+// mesh at the press); undone and pulled again it gets a fresh one. Both must give the same mesh.
+TEST(SculptRedraw, APullAfterAStrokeUndoneAndPulledAgainGivesTheSameMesh) {
+  for (bool stroke_first : {false, true}) {
+    sculpt::Session s;
+    s.load(app_sphere());
+    if (stroke_first) s.brush_stroke(inflate_stroke());
+    const Point c(0.0, 0.0, 1.0);
+    const Vec3 t(0.0, 0.1, 0.3);
+    test::pull(s, c, t, 6);
+    const mesh::SurfaceMesh first = s.mesh();
+    for (int round = 0; round < 2; ++round) {
+      ASSERT_TRUE(s.undo());
+      test::pull(s, c, t, 6);
+      expect_same_slots(s.mesh(), first, std::string(stroke_first ? "after a stroke" : "after the load") + ", round " + std::to_string(round));
+    }
+    // And a stroke after the pull: drawn on what the pull left, it gives what it gave.
+    s.brush_stroke(inflate_stroke(deform::BrushTool::Draw));
+    const mesh::SurfaceMesh drawn = s.mesh();
+    ASSERT_TRUE(s.undo());
+    s.brush_stroke(inflate_stroke(deform::BrushTool::Draw));
+    expect_same_slots(s.mesh(), drawn, "a stroke after the pull, drawn again");
+  }
+}
