@@ -14,6 +14,7 @@ import json
 import math
 import os
 import re
+import shlex
 import shutil
 import signal
 import subprocess
@@ -587,7 +588,7 @@ def write_doc(path, argv, sweep, results, fails, skipped, settings_by_name, labe
         "",
         "```",
         ("" if sweep.bin == (REPO / "build/native/adasculpt").resolve() else "ADASCULPT_BIN=<that binary> ") +
-        "bash scripts/sweep-remesh.sh " + " ".join(argv),
+        "bash scripts/sweep-remesh.sh " + " ".join(shlex.quote(a) for a in argv),
         "```",
         "",
         f"Remesh binary: `{sweep.bin}` ({git or 'unknown commit'}), generated {time.strftime('%Y-%m-%d %H:%M %Z')}.",
