@@ -29,7 +29,10 @@ export const sameAs = (page, name) => page.evaluate(async (n) => {
 
 // Copies the WebGL canvas (it keeps its drawing buffer) into a 2D canvas kept as window.__canvas2d,
 // so that later page.evaluate calls can read its pixels with getImageData.
-export const snapshotCanvas = (page) => page.evaluate(() => {
+// Waits two animation frames first, so the copy shows the view after the last key or wheel event
+// (the app renders in requestAnimationFrame; a copy taken before it shows the previous view).
+export const snapshotCanvas = (page) => page.evaluate(async () => {
+  await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
   const c = document.querySelector('canvas');
   const t = document.createElement('canvas');
   t.width = c.width;
