@@ -24,7 +24,9 @@ bool Remesher::enable_mirror(int axis) {
   m.mirror_axis = axis;
   // Feature flags and sizes come from dihedral angles and curvature, computed per side: make the
   // pairs agree (an edge is a feature when either side says so). Only feature edges need their
-  // image looked up; the connectivity elsewhere is checked edge by edge as the passes go.
+  // image looked up; the connectivity elsewhere is checked edge by edge as the passes go. The
+  // marks added are listed: disable_mirror takes them back, so that a kept remesher's marks stay
+  // those a new one would give (reset_slots).
   for (Edge e : m.mesh.edges()) {
     if (!m.feature[e]) continue;
     const Edge img = m.mirror_edge(e);
@@ -32,6 +34,7 @@ bool Remesher::enable_mirror(int axis) {
       disable_mirror();
       return false;
     }
+    if (!m.feature[img]) m.mirror_marked.push_back(img);
     m.feature[img] = 1;
   }
   for (Vertex v : m.mesh.vertices()) {
@@ -44,6 +47,11 @@ bool Remesher::enable_mirror(int axis) {
 void Remesher::disable_mirror() {
   Impl& m = *impl_;
   m.mirror_axis = -1;
+  // (An edge the passes split or removed since is around the stroke's touched vertices: the
+  // caller's reset_slots marks it again.)
+  for (Edge e : m.mirror_marked)
+    if (e.idx < m.mesh.edges_size()) m.feature[e] = 0;
+  m.mirror_marked.clear();
   if (m.mirror.is_valid()) m.mesh.remove_vertex_property(m.mirror);
 }
 

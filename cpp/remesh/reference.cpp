@@ -58,23 +58,28 @@ void Remesher::Impl::mark_features() {
     mark_boundary_edges();
     return;
   }
-  const double cos_limit = portable::cos(opt.feature_angle_deg * M_PI / 180.0);
-  for (Edge e : mesh.edges()) {
-    if (mesh.is_boundary(e)) {
-      feature[e] = 1;
-      continue;
-    }
-    Vec3 n0 = geometry::face_normal(mesh, mesh.face(mesh.halfedge(e, 0)));
-    Vec3 n1 = geometry::face_normal(mesh, mesh.face(mesh.halfedge(e, 1)));
-    if (glm::dot(n0, n0) == 0.0 || glm::dot(n1, n1) == 0.0) continue;  // degenerate: no angle
-    if (glm::dot(n0, n1) < cos_limit) feature[e] = 1;
-  }
+  const double cos_limit = feature_cos_limit();
+  for (Edge e : mesh.edges())
+    if (sharp_or_boundary(e, cos_limit)) feature[e] = 1;
   drop_isolated_features();
   // Every vertex's class from feature edges counted at their ends: sequential passes instead of a
   // walk around every fan, which was most of a sculpting stroke's set-up (1.4 ms of WebAssembly on
   // the 35k-vertex bunny, a closed mesh without a single feature edge).
   const std::vector<std::uint8_t> count = feature_edges_per_vertex();
   for (Vertex v : mesh.vertices()) vclass[v] = vertex_class(count[v.idx]);
+}
+
+double Remesher::Impl::feature_cos_limit() const {
+  return opt.feature_angle_deg > 0 ? portable::cos(opt.feature_angle_deg * M_PI / 180.0) : 2.0;
+}
+
+bool Remesher::Impl::sharp_or_boundary(Edge e, double cos_limit) const {
+  if (mesh.is_boundary(e)) return true;
+  if (!(cos_limit <= 1.0)) return false;  // features off: no dot product is below it
+  const Vec3 n0 = geometry::face_normal(mesh, mesh.face(mesh.halfedge(e, 0)));
+  const Vec3 n1 = geometry::face_normal(mesh, mesh.face(mesh.halfedge(e, 1)));
+  if (glm::dot(n0, n0) == 0.0 || glm::dot(n1, n1) == 0.0) return false;  // degenerate: no angle
+  return glm::dot(n0, n1) < cos_limit;
 }
 
 // Features off (the sculpting default): the boundary edges are the only feature edges, and any

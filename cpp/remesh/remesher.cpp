@@ -68,7 +68,10 @@ Remesher::Remesher(SurfaceMesh& mesh, const RemeshOptions& options) : impl_(std:
   impl_->reference_stale = true;
 }
 
-Remesher::~Remesher() { disable_mirror(); }  // the map is only valid while the remesher keeps it
+Remesher::~Remesher() {
+  impl_->mirror_marked.clear();  // the marks go with the remesher (the mesh may be another one by now)
+  disable_mirror();              // the map is only valid while the remesher keeps it
+}
 
 const RemeshOptions& Remesher::options() const { return impl_->opt; }
 
@@ -259,15 +262,6 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
 }
 
 bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0 && !impl_->sizing_spread; }
-
-void Remesher::end_region_sequence(const std::vector<Vertex>& vertices) {
-  Impl& m = *impl_;
-  const size_t n = m.mesh.vertices_size();
-  for (Vertex v : vertices)
-    if (v.idx < n) m.sizing[v] = 0.0;
-  m.region_calls_since_sizing = 0;
-  m.sizing_spread = false;
-}
 
 size_t Remesher::polish() {
   Impl& m = *impl_;

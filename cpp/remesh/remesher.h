@@ -93,11 +93,16 @@ class Remesher {
   // calls; a large scope, measured a slice per call, never all at once once measured): a caller
   // with a frame budget can give that frame's other work less.
   bool sizing_due() const;
-  // Region iterations measure the sizing of their scope (kept per vertex) every few calls. A
-  // sequence of them ends (a brush stroke): the sizing of `vertices` goes back to unmeasured and
-  // the next call measures again, so that what a stroke does depends on the mesh only, not on
-  // the strokes before it (an undone stroke drawn again gives the same mesh).
-  void end_region_sequence(const std::vector<Vertex>& vertices);
+  // The mesh changed around `vertices` (duplicates and deleted ones allowed): a sequence of region
+  // iterations ended (a stroke or a grab: their sizing, measured every few calls and kept per
+  // vertex, goes back to unmeasured), or an undo or redo swapped their slots back (the remesher's
+  // arrays are not in the history: those slots hold whatever they held). Their per-slot state goes
+  // back to what a new Remesher gives them, and the feature and boundary marks and vertex classes
+  // around them are derived again from the current surface (two rings), so that on every live
+  // slot the remesher equals a new one made on this mesh with these options: what a stroke does
+  // depends on the mesh only, and a session keeps one remesher instead of paying a new one's pass
+  // over every edge. (The mask is the mesh's and looked up by every call.)
+  void reset_slots(const std::vector<Vertex>& vertices);
   // Mirror symmetry for region iterations (brush strokes with symmetry on). When the mesh is
   // exactly symmetric across the plane where coordinate `axis` is 0 (geometry::find_mirror_map),
   // iterate_region does every split, collapse, flip and move on both vertices/edges of a mirror

@@ -170,6 +170,15 @@ struct Remesher::Impl : RemeshScratch {
   void mark_features();
   void mark_boundary_edges();  // mark_features with features off
   void drop_isolated_features();
+  // Before drop_isolated_features: a boundary edge, or (features on) one whose dihedral angle is
+  // past the feature angle, given as feature_cos_limit() (above 1 with features off).
+  double feature_cos_limit() const;
+  bool sharp_or_boundary(Edge e, double cos_limit) const;
+  // ---- back to a new remesher's state around changed slots (reset_slots.cpp)
+  bool marked_as_new(Edge e, double cos_limit) const;  // the mark mark_features gives e now
+  void refresh_marks_around(const std::vector<Vertex>& vertices);
+  std::vector<Vertex> reset_ring;  // scratch: the vertices whose class is derived again
+  std::vector<Edge> mirror_marked;  // edges enable_mirror marked: disable_mirror unmarks them
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   // Lowers the sizing of free vertices where the part is thinner than it (thickness.cpp); needs

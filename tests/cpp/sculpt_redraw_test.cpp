@@ -12,6 +12,7 @@
 
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "kept_remesher_test_util.h"
 #include "undo_test_util.h"
 
 using namespace adasculpt;
@@ -146,5 +147,66 @@ TEST(SculptRedraw, APullAfterAStrokeUndoneAndPulledAgainGivesTheSameMesh) {
     ASSERT_TRUE(s.undo());
     s.brush_stroke(inflate_stroke(deform::BrushTool::Draw));
     expect_same_slots(s.mesh(), drawn, "a stroke after the pull, drawn again");
+  }
+}
+
+// The session keeps one remesher through strokes, grabs, undo and redo (Remesher::reset_slots). A
+// stroke after an undo, after a redo, and after an undo and another stroke must do what it does
+// with a new remesher (a copy of the session through a saved state starts with one), on a mesh
+// with a boundary and with feature edges on, symmetric strokes included; after every step the kept
+// remesher's arrays are those a new one would have.
+TEST(SculptRedraw, StrokesWithTheKeptRemesherGiveWhatANewOneGives) {
+  auto stroke_on_box = [](Point from, Vec3 step, deform::BrushTool tool, int symmetry_axis) {
+    sculpt::BrushStroke s;
+    s.settings.tool = tool;
+    s.settings.radius = 0.25;
+    s.settings.strength = 0.6;
+    s.settings.symmetry_axis = symmetry_axis;
+    for (int i = 0; i < 6; ++i) s.path.push_back(from + double(i) * step);
+    return s;
+  };
+  // Over the sharp edge x = 0.5, z = -0.5 (and mirrored across x = 0), up the wall at the boundary,
+  // and over a corner.
+  const sculpt::BrushStroke over_edge =
+      stroke_on_box({0.5, -0.3, -0.5}, {0.0, 0.1, 0.0}, deform::BrushTool::Draw, 0);
+  const sculpt::BrushStroke up_wall = stroke_on_box({-0.1, -0.5, 0.0}, {0.0, 0.0, 0.09}, deform::BrushTool::Inflate, -1);
+  const sculpt::BrushStroke at_corner =
+      stroke_on_box({0.4, 0.5, -0.5}, {0.02, 0.0, 0.0}, deform::BrushTool::Crease, -1);
+  for (double features : {0.0, 40.0}) {
+    const std::string label = features > 0 ? "features on" : "features off";
+    sculpt::Session s;
+    s.load(test::open_box());
+    s.set_settings({{"features", features}});
+    ASSERT_TRUE(test::remesher_as_new(s)) << label;
+    s.brush_stroke(over_edge);
+    s.brush_stroke(up_wall);
+    ASSERT_TRUE(test::remesher_as_new(s)) << label << ", after two strokes";
+    // Each case: the steps before it on `s`, then a copy with a new remesher, then the same strokes on both.
+    auto same_from_here = [&](const std::string& what, const std::vector<sculpt::BrushStroke>& strokes) {
+      ASSERT_TRUE(test::remesher_as_new(s)) << label << ", " << what;
+      sculpt::Session fresh;
+      test::copy_through_saved_state(s, fresh);
+      ASSERT_TRUE(test::same_slots(s.mesh(), fresh.mesh())) << label << ", " << what << ": the copy";
+      for (size_t i = 0; i < strokes.size(); ++i) {
+        s.brush_stroke(strokes[i]);
+        fresh.brush_stroke(strokes[i]);
+        EXPECT_TRUE(test::same_slots(s.mesh(), fresh.mesh())) << label << ", " << what << ", stroke " << i;
+        EXPECT_TRUE(test::remesher_as_new(s)) << label << ", " << what << ", stroke " << i;
+      }
+    };
+    ASSERT_TRUE(s.undo());
+    same_from_here("after an undo", {up_wall, at_corner});
+    ASSERT_TRUE(s.undo());
+    ASSERT_TRUE(s.undo());
+    ASSERT_TRUE(s.redo());
+    same_from_here("after a redo", {at_corner});
+    ASSERT_TRUE(s.undo());
+    s.brush_stroke(at_corner);  // another stroke where the undone one was
+    same_from_here("after an undo and another stroke", {over_edge, up_wall});
+    // A pull with the kept remesher, then strokes after undoing it.
+    test::pull(s, Point(0.5, 0.0, 0.0), Vec3(0.15, 0.0, 0.05), 4);
+    ASSERT_TRUE(test::remesher_as_new(s)) << label << ", after a pull";
+    ASSERT_TRUE(s.undo());
+    same_from_here("after an undone pull", {over_edge});
   }
 }
