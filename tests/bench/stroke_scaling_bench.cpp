@@ -129,6 +129,13 @@ void viewer_frame(sculpt::Session& s, sculpt::RenderBuffers& rb) {
   s.clear_changes();
 }
 
+// A session on the scene with the app's detail, and a viewer that has uploaded it.
+void open_scene(sculpt::Session& s, sculpt::RenderBuffers& rb, const mesh::SurfaceMesh& m) {
+  s.load(m);
+  set_bunny_detail(s);
+  viewer_frame(s, rb);  // the load's full upload
+}
+
 // A stroke as the app sends it: one call per pointer sample, each followed by a viewer frame.
 void stroke_with_frames(sculpt::Session& s, sculpt::RenderBuffers& rb, const sculpt::BrushStroke& st) {
   s.brush_begin(st.settings);
@@ -161,10 +168,8 @@ void BM_StrokeScaling(benchmark::State& state) {
   for (auto _ : state) {
     state.PauseTiming();
     sculpt::Session s;
-    s.load(m);
-    set_bunny_detail(s);
     sculpt::RenderBuffers rb;
-    viewer_frame(s, rb);  // the load's full upload
+    open_scene(s, rb, m);
     const size_t loaded_bytes = s.memory_bytes();
     state.ResumeTiming();
     const auto t0 = Clock::now();
@@ -231,10 +236,8 @@ void BM_StrokeScalingInteractive(benchmark::State& state) {
   std::vector<double> after_undo_ms, later_ms;
   for (auto _ : state) {
     sculpt::Session s;
-    s.load(m);
-    set_bunny_detail(s);
     sculpt::RenderBuffers rb;
-    viewer_frame(s, rb);
+    open_scene(s, rb, m);
     for (size_t k = 0; k < strokes.size(); ++k) {
       auto t = Clock::now();
       stroke_with_frames(s, rb, strokes[k]);
@@ -328,6 +331,43 @@ BENCHMARK(BM_StrokeScalingUndoMemory)->Unit(benchmark::kMillisecond)->Iterations
 
 namespace {
 
+// The first stroke after an undo (issue 18: it made a new remesher, whose marks and classes are a
+// pass over every edge and vertex): the scene's 12 strokes, then 24 times an undo and a stroke
+// where the undone one was, each timed (this thread's CPU time, and wall) from the undo to the
+// stroke's last viewer frame. Under callgrind, --toggle-collect='*undo_then_stroke*' counts the
+// instructions of exactly these.
+__attribute__((noinline)) void undo_then_stroke(sculpt::Session& s, sculpt::RenderBuffers& rb,
+                                                const sculpt::BrushStroke& stroke) {
+  s.undo();
+  viewer_frame(s, rb);
+  stroke_with_frames(s, rb, stroke);
+}
+
+void BM_StrokeAfterUndo(benchmark::State& state) {
+  const int copies = int(state.range(0));
+  const mesh::SurfaceMesh m = scene(copies);
+  const std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
+  std::vector<double> cpu_ms, wall_ms;
+  for (auto _ : state) {
+    sculpt::Session s;
+    sculpt::RenderBuffers rb;
+    open_scene(s, rb, m);
+    for (const sculpt::BrushStroke& stroke : strokes) stroke_with_frames(s, rb, stroke);
+    for (size_t k = 0; k < 24; ++k) {
+      const double cpu = thread_cpu_ms();
+      const auto t = Clock::now();
+      undo_then_stroke(s, rb, strokes[(k + 5) % strokes.size()]);
+      wall_ms.push_back(ms_since(t));
+      cpu_ms.push_back(thread_cpu_ms() - cpu);
+    }
+  }
+  state.counters["cpu_ms_median"] = percentile(cpu_ms, 0.5);
+  std::printf("stroke-after-undo copies=%d triangles=%zu cpu_ms median=%.2f p95=%.2f wall_ms median=%.2f p95=%.2f\n",
+              copies, m.n_faces(), percentile(cpu_ms, 0.5), percentile(cpu_ms, 0.95), percentile(wall_ms, 0.5),
+              percentile(wall_ms, 0.95));
+}
+BENCHMARK(BM_StrokeAfterUndo)->Arg(1)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 // Per-stroke trace (issue 18): the scene's 12 strokes in several sessions on one loaded scene, each
 // stroke timed in its parts: brush_begin, the stamps (with their viewer frames), brush_end (the undo
 // step) and its viewer frame. Tells a per-mesh cost in a session's first stroke (or in the process's
@@ -341,10 +381,8 @@ void BM_StrokeScalingTrace(benchmark::State& state) {
   for (auto _ : state) {
     for (int run = 0; run < sessions; ++run) {
       sculpt::Session s;
-      s.load(m);
-      set_bunny_detail(s);
       sculpt::RenderBuffers rb;
-      viewer_frame(s, rb);
+      open_scene(s, rb, m);
       std::printf("stroke-trace copies=%d session=%d ms (begin+stamps[their viewer frames]+end+frame):", copies, run);
       double beyond = 0;
       for (size_t k = 0; k < strokes.size(); ++k) {
