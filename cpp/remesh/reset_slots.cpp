@@ -87,6 +87,7 @@ void Remesher::Impl::refresh_marks_around(const std::vector<Vertex>& vertices) {
     for_each_outgoing(hc, vh, reset_ring[i], [&](Halfedge h) { list(hc[h.idx].to); });
   const size_t first_ring = reset_ring.size();
   const double cos_limit = feature_cos_limit();
+  const bool features_on = cos_limit <= 1.0;  // off (the sculpting default): the marks are the boundary
   std::uint8_t* feat = feature.vector().data();
   for (size_t i = 0; i < first_ring; ++i)
     for_each_outgoing(hc, vh, reset_ring[i], [&](Halfedge h) {
@@ -95,7 +96,9 @@ void Remesher::Impl::refresh_marks_around(const std::vector<Vertex>& vertices) {
       face_seen[f.idx] = face_run;
       Halfedge g = h;
       for (int k = 0; k < 3; ++k, g = hc[g.idx].next) {
-        feat[g.idx >> 1] = marked_as_new(SurfaceMesh::edge(g), cos_limit);
+        const mesh::Index e = g.idx >> 1;
+        feat[e] = features_on ? marked_as_new(Edge(e), cos_limit)
+                              : !hc[e << 1].face.is_valid() || !hc[(e << 1) | 1u].face.is_valid();
         list(hc[g.idx].to);
       }
     });
