@@ -21,6 +21,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/vertex_mask.h"
 #include "remesh/remesher.h"
+#include "sculpt/component_box.h"
 #include "sculpt/grab.h"
 #include "sculpt/session_file.h"
 #include "sculpt/session_state.h"
@@ -74,15 +75,16 @@ struct Session::Impl {
 
   // Detail that follows the object: a stroke applies the detail settings (fractions of the scene's
   // diagonal) to the connected component under the brush, so loading more objects does not make
-  // every stroke coarser. The component's diagonal is measured by a walk over it at the stroke's
-  // start, and reused while strokes start on the same component.
+  // every stroke coarser. The component's diagonal is measured at the stroke's start (a walk over
+  // it, or read from component_box when it follows that component), and reused while strokes start
+  // on the same component.
   double component_diagonal = 0;  // of the last stroke's component; 0 = unknown
   // Which of epsilon, min_length, max_length are fractions of the diagonal (the defaults, and
   // percentages): those follow the object; lengths given as numbers stay as given.
   bool relative[3] = {true, true, true};
-  std::vector<std::uint32_t> component_mark;
-  std::uint32_t component_run = 0;
-  std::vector<mesh::Vertex> component_queue;
+  // The component's box, followed through strokes, grabs, undo and redo: a stroke after an undo
+  // reads the diagonal a walk would give from it (component_box.h).
+  ComponentBox component_box;
   bool grabbing = false;
   BrushStroker brush;
   bool brushing = false;
@@ -127,36 +129,13 @@ struct Session::Impl {
     remesher.reset();
     remesher_kept = false;
   }
-  // The bounding-box diagonal of the connected component holding v (a walk over it).
-  double measure_component(mesh::Vertex v) {
-    if (component_mark.size() < mesh.vertices_size()) component_mark.resize(mesh.vertices_size() * 5 / 4 + 16, 0u);
-    if (++component_run == 0) {
-      std::fill(component_mark.begin(), component_mark.end(), 0u);
-      component_run = 1;
-    }
-    Point lo = mesh.position(v), hi = lo;
-    component_queue.assign(1, v);
-    component_mark[v.idx] = component_run;
-    const auto* hc = mesh.halfedge_connectivity_data();
-    const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
-    for (size_t i = 0; i < component_queue.size(); ++i) {
-      const mesh::Vertex u = component_queue[i];
-      lo = glm::min(lo, mesh.position(u));
-      hi = glm::max(hi, mesh.position(u));
-      mesh::for_each_outgoing(hc, vh, u, [&](mesh::Halfedge h) {
-        const mesh::Vertex w = hc[h.idx].to;
-        if (component_mark[w.idx] != component_run) {
-          component_mark[w.idx] = component_run;
-          component_queue.push_back(w);
-        }
-      });
-    }
-    return glm::length(hi - lo);
-  }
   // A stroke found the surface at `seed`: its remeshing options, the detail settings scaled from
   // the scene's diagonal to the component's (or the stroke's own constant detail).
   void start_stroke(mesh::Vertex seed, bool same_component) {
-    if (!same_component || !(component_diagonal > 0)) component_diagonal = measure_component(seed);
+    if (!same_component || !(component_diagonal > 0)) {
+      component_diagonal = component_box.known_diagonal(mesh, seed);
+      if (!(component_diagonal > 0)) component_diagonal = component_box.measure(mesh, seed);
+    }
     remesh::RemeshOptions o = options;
     const double scale = component_diagonal > 0 && diagonal > 0 ? component_diagonal / diagonal : 1.0;
     if (relative[0]) o.epsilon *= scale;
@@ -187,8 +166,8 @@ struct Session::Impl {
     // the process's first ~55 ms more (allocation and first-touch page faults; issue 18).
     if (remesher) remesher->reserve_scratch();
     brush.deformer().grow(mesh.vertices_size());
-    const size_t marks = mesh.vertices_size() * 5 / 4 + 16;  // as measure_component and move_step_touched
-    if (component_mark.size() < marks) component_mark.resize(marks, 0u);
+    const size_t marks = mesh.vertices_size() * 5 / 4 + 16;  // as move_step_touched
+    component_box.reset(mesh.vertices_size());
     if (step_mark.size() < marks) step_mark.resize(marks, 0u);
     // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
     // at the first stroke or press after the load, where it would be a hitch.
@@ -290,6 +269,7 @@ struct Session::Impl {
       move_step_touched();
       remesher->reset_slots(step_touched);
       remesher_kept = true;
+      component_box.follow(mesh, step_touched);
     }  // (a mask stroke changes no geometry: a kept remesher and the surface tree stay valid)
     grabbing = brushing = masking = false;
     // The step is recorded from the slots around what it touched (no pass over the mesh). The
@@ -316,7 +296,8 @@ struct Session::Impl {
       // they held before it. reset_slots gives them (and the marks around them) a new remesher's
       // values, without its pass over the mesh.
       if (remesher) remesher->reset_slots(touched);
-      component_diagonal = 0;
+      component_box.follow(mesh, touched);
+      component_diagonal = 0;  // the next stroke takes the diagonal the mesh has now (component_box)
       changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), touched.begin(), touched.end());
     }

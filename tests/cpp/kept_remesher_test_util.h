@@ -17,21 +17,25 @@
 namespace adasculpt::test {
 
 // A unit box cut into n x n squares per face, without its top (z = 0.5) face: one boundary loop,
-// and eight sharp edges (the box's four others are the boundary).
-inline mesh::SurfaceMesh open_box(int n = 6) {
+// and eight sharp edges (the box's four others are the boundary). With `centres_x`, one such box
+// centred at each of these x (two boxes at -c and c: two objects, mirror images across x = 0).
+inline mesh::SurfaceMesh open_box(int n = 6, std::vector<double> centres_x = {0.0}) {
   const mesh::SurfaceMesh box = mesh::make_box(n, n, n);
   std::vector<std::array<double, 3>> points;
-  for (mesh::Vertex v : box.vertices()) {
-    const Point& p = box.position(v);
-    points.push_back({p.x, p.y, p.z});
-  }
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  for (mesh::Face f : box.faces()) {
-    mesh::Vertex c[3];
-    box.face_vertices(f, c);
-    const double z = box.position(c[0]).z + box.position(c[1]).z + box.position(c[2]).z;
-    if (z > 3 * 0.5 - 1e-9) continue;  // all three corners on the top face
-    triangles.push_back({c[0].idx, c[1].idx, c[2].idx});
+  for (double cx : centres_x) {
+    const std::uint32_t base = std::uint32_t(points.size());
+    for (mesh::Vertex v : box.vertices()) {
+      const Point& p = box.position(v);
+      points.push_back({p.x + cx, p.y, p.z});
+    }
+    for (mesh::Face f : box.faces()) {
+      mesh::Vertex c[3];
+      box.face_vertices(f, c);
+      const double z = box.position(c[0]).z + box.position(c[1]).z + box.position(c[2]).z;
+      if (z > 3 * 0.5 - 1e-9) continue;  // all three corners on the top face
+      triangles.push_back({base + c[0].idx, base + c[1].idx, base + c[2].idx});
+    }
   }
   return mesh::build_from_triangles(points, triangles);
 }

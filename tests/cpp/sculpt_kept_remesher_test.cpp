@@ -1,9 +1,10 @@
 // The session keeps one remesher through strokes, grabs, undo and redo, and resets the slots each
 // of them changed (Remesher::reset_slots) instead of making a new one with its pass over the whole
-// mesh. Random sequences on a small open box (a boundary, sharp edges, features on or off,
-// symmetric strokes): after every step the mesh is valid and the kept remesher's arrays are a new
-// one's, and a step after an undo or redo gives the same mesh, slot for slot, as in a copy of the
-// session that starts with a new remesher.
+// mesh; and it follows the box of the object under the brush (ComponentBox) instead of walking the
+// object after each undo. Random sequences on one or two small open boxes (a boundary, sharp
+// edges, features on or off, symmetric strokes): after every step the mesh is valid and the kept
+// remesher's arrays are a new one's, and a step after an undo or redo gives the same mesh, slot
+// for slot, as in a copy of the session that starts with a new remesher and walks the object.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -22,6 +23,7 @@ namespace {
 struct BoxSculptor : test::RandomSculptor {
   using RandomSculptor::RandomSculptor;
 
+  double shift = 0;  // two boxes: at x = -shift and x = shift
   // A point on one of the open box's five faces, sharp edges and corners included.
   Point on_box() {
     Point p(uniform(-0.5, 0.5), uniform(-0.5, 0.5), uniform(-0.5, 0.5));
@@ -30,6 +32,7 @@ struct BoxSculptor : test::RandomSculptor {
       p[face / 2] = face % 2 ? 0.5 : -0.5;
     else
       p.z = -0.5;
+    p.x += pick(2) ? shift : -shift;
     return p;
   }
   Vec3 direction() {
@@ -93,7 +96,9 @@ TEST(SculptKeptRemesher, RandomStrokesGrabsUndoAndRedoKeepItAsNew) {
   for (int seq = 0; seq < kSequences; ++seq) {
     BoxSculptor r(1000 + seq);
     sculpt::Session s;
-    s.load(test::open_box(4));
+    // Two objects in every other pair of sequences: the detail follows the one under the brush.
+    r.shift = seq % 4 < 2 ? 0.0 : 0.8;
+    s.load(r.shift > 0 ? test::open_box(4, {-r.shift, r.shift}) : test::open_box(4));
     // Coarse detail keeps the meshes small; features on in half the sequences.
     s.set_settings({{"epsilon", "0.5%"}, {"min_length", "2%"}, {"max_length", "8%"}, {"features", seq % 2 ? 40 : 0}});
     // Compared after an undo or redo only: a stroke right after a stroke reuses the object size the
