@@ -14,6 +14,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -371,6 +372,44 @@ void BM_StrokeAfterUndo(benchmark::State& state) {
               percentile(wall_ms, 0.95));
 }
 BENCHMARK(BM_StrokeAfterUndo)->Arg(1)->Arg(16)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// Strokes with symmetry on (the app's default: across x). A stroke's start asks the remesher to
+// mirror (Remesher::enable_mirror), which looks for the mirror map over the whole mesh
+// (geometry::find_mirror_map): a pass over every vertex's coordinate along the axis, and on an
+// exactly symmetric mesh a hash table of every vertex and passes over every edge and vertex. Scenes
+// (range 0): 1 and 16 bunny copies (not symmetric: the extent test fails), icospheres of 82k and
+// 1.3M triangles (symmetric: every stroke mirrors). The scene's 12 short strokes with symmetry
+// across x; prints the median stroke's thread CPU ms.
+void BM_SymmetricStrokes(benchmark::State& state) {
+  const int kind = int(state.range(0));
+  const mesh::SurfaceMesh m = kind == 0 ? scene(1) : kind == 1 ? scene(16) : mesh::make_icosphere(kind == 2 ? 6 : 8);
+  std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
+  if (kind >= 2) {  // the bunny's paths and radius, scaled to the sphere (radius 1)
+    const double scale = 2 * std::sqrt(3.0) / bunny_diagonal();
+    for (int k = 0; k < 12; ++k) {
+      strokes[k].settings.radius *= scale;
+      const mesh::Vertex start(uint32_t((uint64_t(k) * 7919 + 13) % m.vertices_size()));
+      const Vec3 dirs[] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+      strokes[k].path = walk_path(m, start, dirs[k % 3], 4 * strokes[k].settings.spacing * strokes[k].settings.radius);
+    }
+  }
+  for (sculpt::BrushStroke& st : strokes) st.settings.symmetry_axis = 0;
+  std::vector<double> cpu_ms;
+  for (auto _ : state) {
+    sculpt::Session s;
+    sculpt::RenderBuffers rb;
+    open_scene(s, rb, m);
+    for (const sculpt::BrushStroke& st : strokes) {
+      const double cpu = thread_cpu_ms();
+      stroke_with_frames(s, rb, st);
+      cpu_ms.push_back(thread_cpu_ms() - cpu);
+    }
+  }
+  std::printf("symmetric-strokes scene=%s triangles=%zu stroke_cpu_ms median=%.2f p95=%.2f\n",
+              kind == 0 ? "bunny" : kind == 1 ? "bunny-x16" : kind == 2 ? "icosphere6" : "icosphere8", m.n_faces(),
+              percentile(cpu_ms, 0.5), percentile(cpu_ms, 0.95));
+}
+BENCHMARK(BM_SymmetricStrokes)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Per-stroke trace (issue 18): the scene's 12 strokes in several sessions on one loaded scene, each
 // stroke timed in its parts: brush_begin, the stamps (with their viewer frames), brush_end (the undo
