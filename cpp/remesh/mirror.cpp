@@ -12,7 +12,16 @@ namespace adasculpt::remesh {
 
 bool Remesher::enable_mirror(int axis) {
   Impl& m = *impl_;
+  std::vector<Vertex> kept = std::move(m.kept_mirror);
+  const bool reuse = m.kept_mirror_axis == axis && kept.size() == m.mesh.vertices_size() &&
+                     !(m.opt.feature_angle_deg > 0) && !mesh::find_mask(m.mesh).is_valid();
   disable_mirror();
+  if (reuse) {  // the last stroke's map (disable_mirror(true)): no search, no pass over the mesh
+    m.mirror = m.mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
+    m.mirror.vector() = std::move(kept);
+    m.mirror_axis = axis;
+    return true;
+  }
   std::vector<Vertex> image = geometry::find_mirror_map(m.mesh, axis);
   if (image.empty()) return false;
   // A mask that is not its own mirror image would stop one side of a pair and not the other.
@@ -44,8 +53,14 @@ bool Remesher::enable_mirror(int axis) {
   return true;
 }
 
-void Remesher::disable_mirror() {
+void Remesher::disable_mirror(bool keep_map) {
   Impl& m = *impl_;
+  m.kept_mirror.clear();
+  m.kept_mirror_axis = -1;
+  if (keep_map && m.mirror_axis >= 0 && m.mirror.is_valid()) {
+    m.kept_mirror = std::move(m.mirror.vector());
+    m.kept_mirror_axis = m.mirror_axis;
+  }
   m.mirror_axis = -1;
   // (An edge the passes split or removed since is around the stroke's touched vertices: the
   // caller's reset_slots marks it again.)

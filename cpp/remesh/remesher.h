@@ -111,7 +111,14 @@ class Remesher {
   // overlaps it near the plane, where doing both is not certain to stay valid, is left out.
   // Returns false, and leaves mirroring off, when the mesh is not exactly symmetric.
   bool enable_mirror(int axis);
-  void disable_mirror();
+  // Mirroring ends (a stroke ends). keep_map: since enable_mirror the mesh changed only through
+  // this remesher's mirrored region iterations and the mirrored stamps of one brush stroke, which
+  // keep it exactly symmetric and the map up to date, so the map is still the mesh's: the next
+  // enable_mirror on the same axis takes it instead of searching the whole mesh (with features off
+  // and no mask, where nothing else in enable_mirror needs a pass: boundary marks of a symmetric
+  // mesh are symmetric, and every sizing is 0 between strokes). Any other change to the mesh must
+  // end with keep_map false (or no mirroring).
+  void disable_mirror(bool keep_map = false);
   // While mirroring: the vertex at v's mirror image (vertices the iterations add included),
   // indexed by vertex index; nullptr when mirroring is off.
   const std::vector<Vertex>* mirror_map() const;

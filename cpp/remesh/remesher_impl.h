@@ -179,6 +179,8 @@ struct Remesher::Impl : RemeshScratch {
   void refresh_marks_around(const std::vector<Vertex>& vertices);
   std::vector<Vertex> reset_ring;  // scratch: the vertices whose class is derived again
   std::vector<Edge> mirror_marked;  // edges enable_mirror marked: disable_mirror unmarks them
+  std::vector<Vertex> kept_mirror;  // disable_mirror(true): the map, for the next enable_mirror
+  int kept_mirror_axis = -1;
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   // Lowers the sizing of free vertices where the part is thinner than it (thickness.cpp); needs

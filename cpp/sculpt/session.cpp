@@ -263,7 +263,10 @@ struct Session::Impl {
     if (!grabbing && !brushing && !masking) return;
     if (grabbing) grab.end();
     if (brushing || grabbing) {
-      remesher->disable_mirror();
+      // A stroke that mirrored to its end changed the mesh only through its mirrored stamps and
+      // passes: the remesher keeps the mirror map for the next symmetric stroke (no search over
+      // the mesh). Anything else forgets it.
+      remesher->disable_mirror(brushing && remesher->mirror_map() != nullptr);
       // The sizing the stroke or grab measured goes back to unmeasured and the marks around what
       // it moved follow the new surface: the next one starts as with a new remesher.
       move_step_touched();
@@ -295,7 +298,10 @@ struct Session::Impl {
       // The remesher's arrays are not in the history: the slots the step swapped back hold what
       // they held before it. reset_slots gives them (and the marks around them) a new remesher's
       // values, without its pass over the mesh.
-      if (remesher) remesher->reset_slots(touched);
+      if (remesher) {
+        remesher->disable_mirror();  // a kept mirror map is the state after the step
+        remesher->reset_slots(touched);
+      }
       component_box.follow(mesh, touched);
       component_diagonal = 0;  // the next stroke takes the diagonal the mesh has now (component_box)
       changes.topology_changed = true;

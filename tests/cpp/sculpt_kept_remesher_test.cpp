@@ -12,7 +12,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/mirror_symmetry.h"
 #include "kept_remesher_test_util.h"
+#include "mesh/primitives.h"
 #include "sculpt/session.h"
 #include "undo_test_util.h"
 
@@ -124,4 +126,38 @@ TEST(SculptKeptRemesher, RandomStrokesGrabsUndoAndRedoKeepItAsNew) {
     }
   }
   EXPECT_GT(compared, kSequences);  // about 2.4 comparisons per sequence
+}
+
+// A stroke that mirrored to its end leaves the remesher its mirror map, and the next symmetric
+// stroke takes it instead of searching the mesh (Remesher::disable_mirror(true)): each stroke must
+// do what it does in a copy of the session that searches, and the sphere must stay exactly
+// symmetric. Lengths are given as numbers, so that no stroke scales them by the object's size (a
+// copy measures it again, the session reuses the last stroke's). An undo and a one-sided stroke
+// in between must make the next symmetric stroke search again.
+TEST(SculptKeptRemesher, SymmetricStrokesTakeTheLastStrokesMirrorMap) {
+  const nlohmann::json absolute = {{"epsilon", 0.002}, {"min_length", 0.03}, {"max_length", 0.2}};
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(4));
+  s.set_settings(absolute);
+  ASSERT_TRUE(geometry::is_mirror_symmetric(s.mesh(), 0));
+  test::RandomSculptor r(7);
+  for (int k = 0; k < 10; ++k) {
+    const std::string where = "stroke " + std::to_string(k);
+    if (k == 4) {
+      ASSERT_TRUE(s.undo());
+    }
+    sculpt::BrushStroke stroke = r.stroke();
+    stroke.settings.symmetry_axis = k == 7 ? -1 : 0;  // one one-sided stroke: the sphere is not symmetric after it
+    if (k == 8) {  // back to symmetric
+      ASSERT_TRUE(s.undo());
+    }
+    sculpt::Session searching;
+    test::copy_through_saved_state(s, searching);
+    searching.set_settings(absolute);
+    s.brush_stroke(stroke);
+    searching.brush_stroke(stroke);
+    ASSERT_TRUE(test::same_slots(s.mesh(), searching.mesh())) << where;
+    EXPECT_EQ(geometry::is_mirror_symmetric(s.mesh(), 0), k != 7) << where;
+    ASSERT_TRUE(test::remesher_as_new(s)) << where;
+  }
 }
