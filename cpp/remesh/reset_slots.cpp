@@ -3,6 +3,7 @@
 // (a stroke deformed them, so the dihedral angles its feature marks came from are stale). Only the
 // neighbourhood of those slots is visited: a new remesher's marks cost a pass over every edge
 // (5.8 ms at 1.1M triangles, the first stroke after every undo; issue 18).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
