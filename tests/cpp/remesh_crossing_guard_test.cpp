@@ -8,9 +8,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "geometry/face_grid.h"
 #include "geometry/self_intersections.h"
@@ -198,4 +200,58 @@ TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
   std::sort(found.begin(), found.end());
   std::sort(fan.begin(), fan.end());
   EXPECT_EQ(found, fan);
+}
+
+// The guard clears the faces that share a corner with a collapse's new triangles by whole fans
+// (geometry/embedded_fan.h) instead of pair by pair. On a crumpled sphere, with the merged vertex
+// moved by up to half an edge length along each axis, every collapse that makes a crossing (by
+// the exact count) must be refused, and most others pass.
+TEST(CrossingGuard, RefusesEveryCollapseThatCrossesOnACrumpledSphere) {
+  Points p;
+  Triangles t;
+  constexpr std::uint32_t kRings = 10, kSegments = 20;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> noise(-0.5, 0.5);
+  p.push_back({0, 0, 1});
+  for (std::uint32_t i = 1; i < kRings; ++i)
+    for (std::uint32_t j = 0; j < kSegments; ++j) {
+      const double theta = kPi * (i + 0.4 * noise(rng)) / kRings, phi = 2 * kPi * (j + 0.4 * noise(rng)) / kSegments;
+      const double r = 1 + 0.3 * noise(rng);
+      p.push_back({r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi), r * std::cos(theta)});
+    }
+  p.push_back({0, 0, -1});
+  auto at = [&](std::uint32_t i, std::uint32_t j) { return 1 + (i - 1) * kSegments + j % kSegments; };
+  const std::uint32_t south = static_cast<std::uint32_t>(p.size() - 1);
+  for (std::uint32_t j = 0; j < kSegments; ++j) {
+    t.push_back({0, at(1, j), at(1, j + 1)});
+    t.push_back({south, at(kRings - 1, j + 1), at(kRings - 1, j)});
+    for (std::uint32_t i = 1; i + 1 < kRings; ++i) {
+      t.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  const SurfaceMesh sphere = mesh::build_from_triangles(p, t);
+  ASSERT_EQ(crossings(sphere), 0u);
+  size_t crossing_collapses = 0, refused = 0, tried = 0;
+  for (mesh::Edge e : sphere.edges()) {
+    SurfaceMesh m = sphere;
+    const mesh::Halfedge h = m.halfedge(e, 0);
+    if (!m.is_collapse_ok(h)) continue;
+    const Point a = m.position(m.from_vertex(h)), b = m.position(m.to_vertex(h));
+    const Point mid = 0.5 * (a + b);
+    const Point target = mid + 1.0 * glm::length(b - a) * Vec3(noise(rng), noise(rng), noise(rng));
+    remesh::CrossingGuard guard;
+    guard.start(m);
+    const bool refuses = guard.collapse_crosses(m, h, target, true);
+    ++tried;
+    refused += refuses;
+    const Vertex survivor = m.to_vertex(h);
+    m.collapse(h);
+    m.position(survivor) = target;
+    if (crossings(m) == 0) continue;
+    ++crossing_collapses;
+    EXPECT_TRUE(refuses) << "edge " << e.idx;
+  }
+  EXPECT_GT(crossing_collapses, 20u);  // rough enough to test something
+  EXPECT_LT(refused, tried / 2);    // and smooth enough that most collapses pass
 }
