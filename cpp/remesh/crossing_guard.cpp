@@ -334,11 +334,12 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
       if (moved(w)) to_undo_.push_back(Vertex(w));
   };
   to_undo_.clear();
-  grid_.for_each_overlapping_pair(work_left_, [&](Face f, Face g) {
-    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return true;
-    if (face_degenerate_[f.idx] || face_degenerate_[g.idx]) return true;
+  auto wanted = [&](Face f, Face g) {
+    return (moved_face_[f.idx] || moved_face_[g.idx]) && !face_degenerate_[f.idx] && !face_degenerate_[g.idx] &&
+           !share_an_embedded_fan(mesh, face_corners_[f.idx], face_corners_[g.idx]);
+  };
+  grid_.for_each_overlapping_pair(work_left_, wanted, [&](Face f, Face g) {
     const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
-    if (share_an_embedded_fan(mesh, cf, cg)) return true;
     const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
     if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||
         !geometry::faces_intersect(pf, cf, pg, cg))
