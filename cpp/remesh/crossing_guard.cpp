@@ -234,8 +234,8 @@ bool CrossingGuard::crossed_already(const SurfaceMesh& mesh, Face g, const Point
   return crosses_g(skip0) || crosses_g(skip1);
 }
 
-bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
-  if (!grid_.built()) return false;
+void CrossingGuard::collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target,
+                                        bool both_ends_move) {
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   candidates_.clear();
   auto add_fan = [&](Vertex centre, Vertex other) {
@@ -248,6 +248,19 @@ bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const 
   };
   add_fan(v0, v1);
   if (both_ends_move) add_fan(v1, v0);
+}
+
+bool CrossingGuard::fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedge h, const Point& target,
+                                                bool both_ends_move, Vertex w) {
+  collapse_candidates(mesh, h, target, both_ends_move);
+  return fan_embedded_after(mesh, w.idx, candidates_.data(), candidates_.size(), mesh.from_vertex(h),
+                            both_ends_move ? mesh.to_vertex(h) : Vertex(), Face(), Face());
+}
+
+bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
+  if (!grid_.built()) return false;
+  const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  collapse_candidates(mesh, h, target, both_ends_move);
   if (first_crossing(mesh, candidates_.data(), candidates_.size(), v0, both_ends_move ? v1 : Vertex(), Face(),
                      Face())
           .found)

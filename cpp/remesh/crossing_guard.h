@@ -44,6 +44,10 @@ class CrossingGuard {
   // when both_ends_move) would create a triangle that crosses the surface or is degenerate.
   bool collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   bool flip_crosses(const SurfaceMesh& mesh, Edge e);
+  // The test collapse_crosses passes over the pairs that share w with: whether w's fan as that
+  // collapse would leave it is surely embedded (geometry/embedded_fan.h). For the tests.
+  bool fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move,
+                                   Vertex w);
   // After v moved: whether a face of its fan crosses the surface.
   bool fan_crosses(const SurfaceMesh& mesh, Vertex v) { return fan_crossing(mesh, v).found; }
 
@@ -71,6 +75,8 @@ class CrossingGuard {
   // With `before` (positions per vertex slot), a pair that crossed there too is passed over.
   Crossing first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n, Vertex replaced0, Vertex replaced1,
                           Face skip0, Face skip1, const std::vector<Point>* before = nullptr);
+  // The triangles collapsing h would create, into candidates_ (survivor: h's to_vertex, at target).
+  void collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   // Whether g (corners q) crosses one of the faces the operation replaces.
   bool crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3], const std::array<std::uint32_t, 3>& ids,
                        Vertex replaced0, Vertex replaced1, Face skip0, Face skip1) const;
