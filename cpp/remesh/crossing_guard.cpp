@@ -6,6 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "geometry/embedded_fan.h"
 #include "geometry/self_intersections.h"
 
 namespace adasculpt::remesh {
@@ -15,6 +16,9 @@ namespace {
 // an operation's new triangles a few. Measured on dragon.off at the default settings: 1.5 or 2
 // mean edges cost 10-15 % more time (more cells per query, more entries per face), 4 about as much.
 constexpr double kCellEdges = 3.0;
+// The cells of undo_crossing_moves' sweep over all pairs in a cell, whose cost grows with the
+// faces per cell.
+constexpr double kSweepCellEdges = 2.0;
 // The work one grid allows (cells, entries and pairs of faces looked at), per face and in all: bounded work on
 // inputs that defeat the grid (cgal/degtri_sliding: fans of thousands of needles in a few cells
 // ran 30 s and more). The dragon at the defaults looks at about 30 pairs per face per grid.
@@ -103,11 +107,6 @@ bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, con
 
 Vec3 normal_of(const Point p[3]) { return glm::cross(p[1] - p[0], p[2] - p[0]); }
 
-bool surely_apart(const Point p[3], const std::array<std::uint32_t, 3>& pid, const Point q[3],
-                  const std::array<std::uint32_t, 3>& qid) {
-  return surely_apart(p, pid, normal_of(p), q, qid, normal_of(q));
-}
-
 std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f) {
   mesh::Vertex c[3];
   mesh.face_vertices(f, c);
@@ -115,7 +114,9 @@ std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f
 }
 }  // namespace
 
-void CrossingGuard::start(const SurfaceMesh& mesh) {
+void CrossingGuard::start(const SurfaceMesh& mesh) { start(mesh, kCellEdges); }
+
+void CrossingGuard::start(const SurfaceMesh& mesh, double cell_edges) {
   const auto* hc = mesh.halfedge_connectivity_data();
   const Point* pos = mesh.positions().data();
   double sum = 0;
@@ -127,7 +128,7 @@ void CrossingGuard::start(const SurfaceMesh& mesh) {
   if (n == 0) return;
   // The mean edge: where the collapses that follow make faces larger, the cells grow with them
   // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
-  grid_.build(mesh, kCellEdges * sum / static_cast<double>(n));
+  grid_.build(mesh, cell_edges * sum / static_cast<double>(n));
   work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
 }
 
@@ -155,15 +156,20 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
   Crossing crossing;
   if (n == 0) return crossing;
   Point lo = ts[0].p[0], hi = ts[0].p[0];
+  shapes_.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    if (geometry::collinear(ts[i].p[0], ts[i].p[1], ts[i].p[2])) {  // no orientation: never created
+    const Point* p = ts[i].p;
+    if (geometry::collinear(p[0], p[1], p[2])) {  // no orientation: never created
       crossing.found = true;
       crossing.triangle = i;
       return crossing;
     }
-    for (const Point& p : ts[i].p) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    // Each candidate's box and normal once: every near face is compared with each candidate.
+    shapes_[i] = {glm::min(p[0], glm::min(p[1], p[2])), glm::max(p[0], glm::max(p[1], p[2])), normal_of(p)};
+    lo = glm::min(lo, shapes_[i].lo), hi = glm::max(hi, shapes_[i].hi);
   }
   near_.clear();
+  fans_after_.clear();
   if (!grid_.gather(lo, hi, near_, work_left_)) {  // spent: from here on the operations are not checked
     grid_.clear();
     return crossing;
@@ -188,16 +194,19 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
     const Point qlo = glm::min(q[0], glm::min(q[1], q[2])), qhi = glm::max(q[0], glm::max(q[1], q[2]));
     if (boxes_disjoint(qlo, qhi, lo, hi)) continue;  // (the grid's boxes are rounded outwards, or stale)
     bool checked_degenerate = false;
+    Vec3 nq;
     for (size_t i = 0; i < n; ++i) {
       const Candidate& t = ts[i];
-      if (g == t.face) continue;
-      const Point tlo = glm::min(t.p[0], glm::min(t.p[1], t.p[2])), thi = glm::max(t.p[0], glm::max(t.p[1], t.p[2]));
-      if (boxes_disjoint(qlo, qhi, tlo, thi)) continue;
+      if (g == t.face || boxes_disjoint(qlo, qhi, shapes_[i].lo, shapes_[i].hi) ||
+          shared_fan_embedded(mesh, t.ids, ids, ts, n, replaced0, replaced1, skip0, skip1))
+        continue;
       if (!checked_degenerate) {
         checked_degenerate = true;
         if (geometry::collinear(q[0], q[1], q[2])) break;  // left out, as the self-intersection count does
+        nq = normal_of(q);
       }
-      if (surely_apart(t.p, t.ids, q, ids) || !geometry::faces_intersect(t.p, t.ids, q, ids)) continue;
+      if (surely_apart(t.p, t.ids, shapes_[i].normal, q, ids, nq) || !geometry::faces_intersect(t.p, t.ids, q, ids))
+        continue;
       if (crossed_already(mesh, g, q, ids, replaced0, replaced1, skip0, skip1)) break;
       if (before && crossed_before(*before, t.ids, ids)) continue;
       crossing.found = true;
@@ -225,8 +234,8 @@ bool CrossingGuard::crossed_already(const SurfaceMesh& mesh, Face g, const Point
   return crosses_g(skip0) || crosses_g(skip1);
 }
 
-bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
-  if (!grid_.built()) return false;
+void CrossingGuard::collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target,
+                                        bool both_ends_move) {
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   candidates_.clear();
   auto add_fan = [&](Vertex centre, Vertex other) {
@@ -239,11 +248,28 @@ bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const 
   };
   add_fan(v0, v1);
   if (both_ends_move) add_fan(v1, v0);
+}
+
+bool CrossingGuard::fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedge h, const Point& target,
+                                                bool both_ends_move, Vertex w) {
+  collapse_candidates(mesh, h, target, both_ends_move);
+  return fan_embedded_after(mesh, w.idx, candidates_.data(), candidates_.size(), mesh.from_vertex(h),
+                            both_ends_move ? mesh.to_vertex(h) : Vertex(), Face(), Face());
+}
+
+bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
+  if (!grid_.built()) return false;
+  const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  collapse_candidates(mesh, h, target, both_ends_move);
   if (first_crossing(mesh, candidates_.data(), candidates_.size(), v0, both_ends_move ? v1 : Vertex(), Face(),
                      Face())
           .found)
     return true;
-  // The new fan against itself: triangles meeting only at the survivor may still cross.
+  // The new fan against itself: triangles meeting only at the survivor may still cross, unless
+  // the survivor's fan after the collapse is embedded (all of them are in it).
+  if (remembered_fan_embedded_after(mesh, v1.idx, candidates_.data(), candidates_.size(), v0,
+                                    both_ends_move ? v1 : Vertex(), Face(), Face()))
+    return false;
   for (size_t i = 0; i < candidates_.size(); ++i)
     for (size_t j = i + 1; j < candidates_.size(); ++j)
       if (geometry::faces_intersect(candidates_[i].p, candidates_[i].ids, candidates_[j].p, candidates_[j].ids))
@@ -273,6 +299,20 @@ CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Ver
   return first_crossing(mesh, candidates_.data(), candidates_.size(), Vertex(), Vertex(), Face(), Face(), before);
 }
 
+// Nine pairs in ten whose boxes touch are neighbours with a common corner: one test of that
+// corner's fan (geometry/embedded_fan.h) clears all of its pairs at once, at the positions the
+// sweep sees (fan_embedded_ is per call).
+bool CrossingGuard::share_an_embedded_fan(const SurfaceMesh& mesh, const std::array<std::uint32_t, 3>& a,
+                                          const std::array<std::uint32_t, 3>& b) {
+  for (const std::uint32_t v : a) {
+    if (v != b[0] && v != b[1] && v != b[2]) continue;
+    std::uint8_t& known = fan_embedded_[v];
+    if (known == kUnknown) known = geometry::fan_surely_embedded(mesh, Vertex(v)) ? kEmbedded : kNotShown;
+    if (known == kEmbedded) return true;
+  }
+  return false;
+}
+
 // The first round checks every pair of touching boxes in one sweep over the grid's cells: a
 // search around each of the tens of thousands of moved vertices cost four times as much
 // (memory-bound); the later rounds search around the few vertices sent back.
@@ -300,15 +340,18 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
     any = any || moved_face_[f.idx];
   }
   if (!any) return 0;
-  start(mesh);
+  fan_embedded_.assign(mesh.vertices_size(), kUnknown);
+  start(mesh, kSweepCellEdges);
   auto undo_corners = [&](const std::array<std::uint32_t, 3>& c) {
     for (std::uint32_t w : c)
       if (moved(w)) to_undo_.push_back(Vertex(w));
   };
   to_undo_.clear();
-  grid_.for_each_overlapping_pair(work_left_, [&](Face f, Face g) {
-    if (!moved_face_[f.idx] && !moved_face_[g.idx]) return true;
-    if (face_degenerate_[f.idx] || face_degenerate_[g.idx]) return true;
+  auto wanted = [&](Face f, Face g) {
+    return (moved_face_[f.idx] || moved_face_[g.idx]) && !face_degenerate_[f.idx] && !face_degenerate_[g.idx] &&
+           !share_an_embedded_fan(mesh, face_corners_[f.idx], face_corners_[g.idx]);
+  };
+  grid_.for_each_overlapping_pair(work_left_, wanted, [&](Face f, Face g) {
     const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
     const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
     if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||

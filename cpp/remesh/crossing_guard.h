@@ -13,6 +13,7 @@
 // to one left the slivers around it (bunny.off: a 6.7-degree triangle at one of its two).
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/face_grid.h"
@@ -33,6 +34,7 @@ class CrossingGuard {
   // grid is bounded (a fixed number of face pairs per face): once spent, the guard stops itself
   // until the next start(), and the operations go unchecked (inputs that defeat the grid only).
   void start(const SurfaceMesh& mesh);
+  void start(const SurfaceMesh& mesh, double cell_edges);  // cells as long as this many mean edges
   void stop() { grid_.clear(); }
   bool active() const { return grid_.built(); }
   void fan_changed(const SurfaceMesh& mesh, Vertex v) { grid_.insert_fan(mesh, v); }  // after a move, split or collapse at v
@@ -42,6 +44,10 @@ class CrossingGuard {
   // when both_ends_move) would create a triangle that crosses the surface or is degenerate.
   bool collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   bool flip_crosses(const SurfaceMesh& mesh, Edge e);
+  // The test collapse_crosses passes over the pairs that share w with: whether w's fan as that
+  // collapse would leave it is surely embedded (geometry/embedded_fan.h). For the tests.
+  bool fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move,
+                                   Vertex w);
   // After v moved: whether a face of its fan crosses the surface.
   bool fan_crosses(const SurfaceMesh& mesh, Vertex v) { return fan_crossing(mesh, v).found; }
 
@@ -69,19 +75,45 @@ class CrossingGuard {
   // With `before` (positions per vertex slot), a pair that crossed there too is passed over.
   Crossing first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n, Vertex replaced0, Vertex replaced1,
                           Face skip0, Face skip1, const std::vector<Point>* before = nullptr);
+  // The triangles collapsing h would create, into candidates_ (survivor: h's to_vertex, at target).
+  void collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   // Whether g (corners q) crosses one of the faces the operation replaces.
   bool crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3], const std::array<std::uint32_t, 3>& ids,
                        Vertex replaced0, Vertex replaced1, Face skip0, Face skip1) const;
   Crossing fan_crossing(const SurfaceMesh& mesh, Vertex v, const std::vector<Point>* before = nullptr);  // fills candidates_
+  // Whether w's fan as the operation first_crossing checks would leave it (w's faces but those it
+  // replaces, with the new candidates) surely crosses nowhere (geometry/embedded_fan.h). Where a
+  // collapse's survivor stays, its current place must be the target (as collapse_crosses asks).
+  bool fan_embedded_after(const SurfaceMesh& mesh, std::uint32_t w, const Candidate* ts, size_t n, Vertex replaced0,
+                          Vertex replaced1, Face skip0, Face skip1) const;
+  // fan_embedded_after, remembered per operation in fans_after_ (cleared by first_crossing).
+  bool remembered_fan_embedded_after(const SurfaceMesh& mesh, std::uint32_t w, const Candidate* ts, size_t n,
+                                     Vertex replaced0, Vertex replaced1, Face skip0, Face skip1);
+  // Whether a candidate with corners a and a face with corners b share a corner whose fan after the
+  // operation is embedded: then they do not cross.
+  bool shared_fan_embedded(const SurfaceMesh& mesh, const std::array<std::uint32_t, 3>& a,
+                           const std::array<std::uint32_t, 3>& b, const Candidate* ts, size_t n, Vertex replaced0,
+                           Vertex replaced1, Face skip0, Face skip1);
+  // Whether faces with corners a and b share a corner whose fan surely crosses nowhere (undo_crossing_moves).
+  bool share_an_embedded_fan(const SurfaceMesh& mesh, const std::array<std::uint32_t, 3>& a,
+                             const std::array<std::uint32_t, 3>& b);
 
   geometry::FaceGrid grid_;
   // Scratch, reused: no allocation once warmed up.
   std::vector<Candidate> candidates_;
+  struct Shape {  // first_crossing: a candidate's box and normal (cross(p1 - p0, p2 - p0))
+    Point lo, hi;
+    Vec3 normal;
+  };
+  std::vector<Shape> shapes_;
+  std::vector<std::pair<std::uint32_t, bool>> fans_after_;  // first_crossing: shared_fan_embedded's answers
   std::vector<Face> near_;
   std::vector<std::uint8_t> moved_face_;  // undo_crossing_moves: per face slot
   std::vector<std::array<std::uint32_t, 3>> face_corners_;  // undo_crossing_moves: per face slot
   std::vector<Vec3> face_normals_;                          // undo_crossing_moves: per face slot
   std::vector<std::uint8_t> face_degenerate_;               // undo_crossing_moves: per face slot
+  enum : std::uint8_t { kUnknown, kEmbedded, kNotShown };
+  std::vector<std::uint8_t> fan_embedded_;  // undo_crossing_moves: per vertex slot, at the current positions
   size_t work_left_ = 0;  // pairs of faces the current grid may still look at (start())
   std::vector<Vertex> to_check_, to_undo_;
 };
