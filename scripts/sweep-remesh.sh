@@ -8,7 +8,7 @@
 # Each run is capped (10 s CPU, 1 GB address space; a cap hit is reported as TIME / MEM) and measured by
 # `adasculpt stats OUT --reference IN --self-intersections`. Prints ONE table (mesh, setting, ms, CPU s,
 # peak MB, vertices, min / mean min angle, Hausdorff % of the diagonal, input SI pairs, new SI pairs =
-# output - input, status) and a summary of the misses of the targets, worst first, each with the
+# output pairs not at the input's own crossings (cpp/geometry/inherited_crossings.h), status) and a summary of the misses of the targets, worst first, each with the
 # command that reproduces it: cap hits and crashes, new crossing pairs, Hausdorff > 2 max(eps, min length / 2)
 # (adaptive: the min length the user set wins where eps asks for shorter edges) or > length (uniform), a
 # coarser setting (larger eps / min length / length) giving more than 1 % (+5) more vertices (see

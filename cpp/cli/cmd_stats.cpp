@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "geometry/quality.h"
+#include "geometry/inherited_crossings.h"
 #include "geometry/self_intersections.h"
 
 namespace adasculpt::cli {
@@ -75,9 +76,21 @@ void run_stats(const StatsOptions& o) {
   if (reference) distance = geometry::distance_between(m, *reference, o.samples);
   std::optional<geometry::SelfIntersectionReport> si;
   if (o.self_intersections) si = geometry::self_intersections(m, o.si_cap);
+  // With a reference: how many of the crossings the reference did not already have there (a remesh
+  // re-samples an input's own crossing into several pairs; see geometry/inherited_crossings.h). The
+  // margin is twice the sampled Hausdorff distance: sampling can only under-estimate it.
+  std::optional<size_t> reference_pairs, not_inherited;
+  if (si && distance) {
+    const geometry::SelfIntersectionReport ref_si = geometry::self_intersections(*reference, o.si_cap);
+    reference_pairs = ref_si.pairs.size();
+    not_inherited = geometry::count_crossings_not_inherited(m, *si, *reference, ref_si, 2.0 * distance->hausdorff);
+  }
 
   if (!o.json) {
     print_table(o.mesh, report, distance, o.reference, si);
+    if (not_inherited)
+      std::printf("  pairs not at the reference's own crossings   %zu (the reference has %zu pairs)\n", *not_inherited,
+                  *reference_pairs);
     return;
   }
   nlohmann::json out = geometry::to_json(report);
@@ -92,6 +105,10 @@ void run_stats(const StatsOptions& o) {
     out["self_intersecting_pairs"] = si->pairs.size();
     out["self_intersections_capped"] = si->capped;
     out["collinear_faces"] = si->degenerate_faces;
+    if (not_inherited) {
+      out["reference_self_intersecting_pairs"] = *reference_pairs;
+      out["self_intersecting_pairs_not_inherited"] = *not_inherited;
+    }
     // Where to look: the centroids of the first few crossing pairs' faces.
     nlohmann::json examples = nlohmann::json::array();
     for (size_t i = 0; i < si->pairs.size() && i < 10; ++i) {
