@@ -103,10 +103,12 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   double area = 0.0;
   AngleSum angle_sum;
   Vec3 laplacian(0.0);
+  bool degenerate = false;
   for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
     const Vec3 pq = q - p, pr = r - p, qr = r - q;
     const double dot_p = glm::dot(pq, pr), dot_q = -glm::dot(pq, qr), dot_r = glm::dot(pr, qr);
     const double twice_area = glm::length(glm::cross(pq, pr));
+    degenerate = degenerate || is_degenerate_triangle(p, q, r);
     const double cot_q = cot_scaled(dot_q, twice_area), cot_r = cot_scaled(dot_r, twice_area);
     laplacian += cot_r * pq + cot_q * pr;
     angle_sum.add(dot_p, twice_area);
@@ -117,7 +119,12 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
     else
       area += 0.125 * (glm::dot(pr, pr) * cot_q + glm::dot(pq, pq) * cot_r);
   });
-  if (!(area > 0.0)) return 0.0;
+  // A zero-area triangle (collinear corners, as in CAD exports and CGAL's degtri_*.off) has no
+  // normal and infinite cotangents: clamped, they gave a flat fan a curvature near 1/kMaxCotan of
+  // its edge length and the sizing field min_length there (degtri_sliding.off, flat, asked for
+  // 2,033 vertices at eps 0.5% instead of about 90). Like a boundary vertex it gets none; the
+  // gradation limit lets its neighbours' sizing reach it.
+  if (degenerate || !(area > 0.0)) return 0.0;
   const double mean = glm::length(laplacian) / (4.0 * area);
   // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn
   // a 1e-15 defect on a flat patch into a 1e-7 curvature.
