@@ -32,12 +32,14 @@ double cotan(const Vec3& u, const Vec3& v);
 // infinite cotangents; the remesher removes it (remesh/degenerate.cpp) and the curvature does not
 // use it. Relative to the shortest side, not the longest: a triangle 1e30 long and 1 wide (a stray
 // vertex far away) is thin, not collinear, and reshaping it would move the surface by 1.
+// The same from twice the area and the three squared side lengths, for callers that have them.
+inline bool is_degenerate_triangle(double twice_area, double l0, double l1, double l2) {
+  const double longest = std::max(l0, std::max(l1, l2)), shortest = std::min(l0, std::min(l1, l2));
+  return twice_area * twice_area <= 1e-16 * longest * shortest;
+}
 inline bool is_degenerate_triangle(const Point& a, const Point& b, const Point& c) {
   const Vec3 ab = b - a, ac = c - a, bc = c - b;
-  const Vec3 n = glm::cross(ab, ac);
-  const double l0 = glm::dot(ab, ab), l1 = glm::dot(ac, ac), l2 = glm::dot(bc, bc);
-  const double longest = std::max(l0, std::max(l1, l2)), shortest = std::min(l0, std::min(l1, l2));
-  return glm::dot(n, n) <= 1e-16 * longest * shortest;
+  return is_degenerate_triangle(glm::length(glm::cross(ab, ac)), glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(bc, bc));
 }
 
 // Closest point to p on triangle abc; bary receives its barycentric coordinates
