@@ -103,10 +103,13 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
   double area = 0.0;
   AngleSum angle_sum;
   Vec3 laplacian(0.0);
+  bool degenerate = false;
   for_each_corner(mesh, v, [&](const Point& p, const Point& q, const Point& r) {
     const Vec3 pq = q - p, pr = r - p, qr = r - q;
     const double dot_p = glm::dot(pq, pr), dot_q = -glm::dot(pq, qr), dot_r = glm::dot(pr, qr);
     const double twice_area = glm::length(glm::cross(pq, pr));
+    const double pq2 = glm::dot(pq, pq), pr2 = glm::dot(pr, pr);
+    degenerate = degenerate || is_degenerate_triangle(twice_area, pq2, pr2, glm::dot(qr, qr));
     const double cot_q = cot_scaled(dot_q, twice_area), cot_r = cot_scaled(dot_r, twice_area);
     laplacian += cot_r * pq + cot_q * pr;
     angle_sum.add(dot_p, twice_area);
@@ -115,9 +118,14 @@ double max_abs_curvature(const mesh::SurfaceMesh& mesh, mesh::Vertex v) {
     else if (dot_q < 0 || dot_r < 0)
       area += 0.125 * twice_area;
     else
-      area += 0.125 * (glm::dot(pr, pr) * cot_q + glm::dot(pq, pq) * cot_r);
+      area += 0.125 * (pr2 * cot_q + pq2 * cot_r);
   });
-  if (!(area > 0.0)) return 0.0;
+  // A zero-area triangle (collinear corners, as in CAD exports and CGAL's degtri_*.off) has no
+  // normal and infinite cotangents: clamped to kMaxCotan, they gave a flat fan a large mean
+  // curvature and the sizing field min_length there (degtri_sliding.off, flat, asked for 2,033
+  // vertices at eps 0.5% instead of about 90). Like a boundary vertex it gets none; the
+  // gradation limit lets its neighbours' sizing reach it.
+  if (degenerate || !(area > 0.0)) return 0.0;
   const double mean = glm::length(laplacian) / (4.0 * area);
   // An angle defect within round-off of zero is zero: sqrt(H^2 - K) would otherwise turn
   // a 1e-15 defect on a flat patch into a 1e-7 curvature.

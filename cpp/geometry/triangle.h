@@ -2,6 +2,10 @@
 // Per-triangle geometry: normals, areas, angles, cotangents and closest points. These are
 // the building blocks of every other geometry routine, so they are written to stay finite
 // on degenerate (zero-area, zero-length-edge) triangles, which real scans contain.
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
 #include "mesh/surface_mesh.h"
 #include "mesh/types.h"
 
@@ -21,6 +25,22 @@ void triangle_angles(const Point& a, const Point& b, const Point& c, double out_
 // large but finite weight; 0 when u or v has zero length.
 constexpr double kMaxCotan = 1e4;
 double cotan(const Vec3& u, const Vec3& v);
+
+// Whether the corners of abc are collinear, to round-off: the corner opposite the longest side
+// lies within 1e-8 of the shortest side's length from that side's line (twice the area is the
+// longest side times that distance), or two corners coincide. Such a triangle has no normal and
+// infinite cotangents; the remesher removes it (remesh/degenerate.cpp) and the curvature does not
+// use it. Relative to the shortest side, not the longest: a triangle 1e30 long and 1 wide (a stray
+// vertex far away) is thin, not collinear, and reshaping it would move the surface by 1.
+// The same from twice the area and the three squared side lengths, for callers that have them.
+inline bool is_degenerate_triangle(double twice_area, double l0, double l1, double l2) {
+  const double longest = std::max(l0, std::max(l1, l2)), shortest = std::min(l0, std::min(l1, l2));
+  return twice_area * twice_area <= 1e-16 * longest * shortest;
+}
+inline bool is_degenerate_triangle(const Point& a, const Point& b, const Point& c) {
+  const Vec3 ab = b - a, ac = c - a, bc = c - b;
+  return is_degenerate_triangle(glm::length(glm::cross(ab, ac)), glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(bc, bc));
+}
 
 // Closest point to p on triangle abc; bary receives its barycentric coordinates
 // (weights of a, b, c, summing to 1). Exact for every Voronoi region of the triangle and

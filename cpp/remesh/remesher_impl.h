@@ -131,12 +131,18 @@ struct Remesher::Impl : RemeshScratch {
   bool has_reference = false;
   // ---- the vertex budget (budget.cpp)
   RemeshReport report;
+  // The budget is kBudgetPerEstimate x the estimate, but at most kLargeBudgetPerEstimate x the
+  // estimate + kLargeBudgetSlack (budget.cpp: the memory a large output's overshoot costs), plus
+  // kBudgetPerInputVertex x the input and kBudgetConstant.
   static constexpr double kBudgetPerEstimate = 4.0;
+  static constexpr double kLargeBudgetPerEstimate = 2.0;
+  static constexpr double kLargeBudgetSlack = 20000;
   static constexpr double kBudgetPerInputVertex = 1.0;  // input vertices no collapse can remove
   static constexpr size_t kBudgetConstant = 1000;
   void estimate_vertex_budget();  // from the reference's sizing; build_reference calls it
   size_t splits_allowed() const;  // before the budget is reached (no limit in region calls)
   void note_budget_reached();     // sets the report's warning
+  void reserve_for_splits();      // whole-mesh iterations: room in the mesh for splits_allowed()
   bool whole_mesh = false;
   int region_calls_since_sizing = 0;  // the scope is every vertex: iterate edges directly
   bool sizing_spread = false;  // the last region call measured a slice of its scope (iterate_region)
@@ -205,6 +211,13 @@ struct Remesher::Impl : RemeshScratch {
                                  std::initializer_list<std::uint32_t> seeds);
   void lower_reference_sizing(const Point& centre, double size, std::initializer_list<std::uint32_t> triangles);
   double sizing_of_hit(const geometry::TriangleTree::ClosestHit& hit) const;
+
+  // ---- zero-area input triangles (degenerate.cpp): collapses and flips that leave the surface
+  // as it is; returns the repairs done. Before the reference is built, without the crossing guard.
+  size_t remove_degenerate_faces();
+  bool is_zero_area(mesh::Face f) const;
+  Halfedge longest_side(mesh::Face f, bool* needle, Halfedge* shortest) const;
+  bool repair_flip_ok(Edge e) const;
 
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
   void gather_all_edges();
