@@ -31,7 +31,6 @@ void Remesher::Impl::estimate_vertex_budget() {
     estimate += area * inverse_square / 3.0;
   }
   estimate *= kVerticesPerUnitArea;
-  estimate += crease_vertex_estimate;  // the strips along the reference's creases (crease.cpp)
   report.estimated_vertices = estimate;
   const double budget = kBudgetPerEstimate * estimate + kBudgetPerInputVertex * double(mesh.n_vertices()) +
                         double(kBudgetConstant);

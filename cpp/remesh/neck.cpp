@@ -227,7 +227,7 @@ double Remesher::Impl::sizing_of_hit(const geometry::TriangleTree::ClosestHit& h
   double size = hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
   if (!necks.empty() && (ref_near_neck[t[0]] || ref_near_neck[t[1]] || ref_near_neck[t[2]]))
     for (const Neck& n : necks) size = std::min(size, n.size + kGradation * glm::length(hit.point - n.centre));
-  return std::min(size, crease_sizing(hit));
+  return size;
 }
 
 }  // namespace adasculpt::remesh

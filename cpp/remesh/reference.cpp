@@ -285,6 +285,7 @@ void Remesher::Impl::build_reference() {
   }
 
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
+  estimate_vertex_budget();
   ref_near_neck.assign(tree.points().size(), 0);
   necks.clear();
   // Incidence of the tree's triangles (it drops degenerate ones and reorders).
@@ -335,12 +336,6 @@ void Remesher::Impl::build_reference() {
     const std::uint32_t first = ref_fan_offset[v.idx];
     ref_hint[v] = first < ref_fan_offset[v.idx + 1] ? ref_fan[first] : UINT32_MAX;
   }
-  // The creases lower the sizing of the mesh's own vertices, not ref_sizing: interpolated over a
-  // large input facet, that would refine all of it (crease.cpp).
-  measure_reference_creases();
-  if (!ref_point_crease.empty())
-    for (Vertex v : all) sizing[v] = std::min(sizing[v], double(ref_point_crease[v.idx]));
-  estimate_vertex_budget();
   reference_stale = false;
 }
 

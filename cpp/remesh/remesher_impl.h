@@ -135,14 +135,6 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<std::array<std::uint32_t, 2>> ref_segments;
   std::vector<std::uint32_t> ref_segment_offset, ref_segment_of_point;
   bool has_reference = false;
-  // Creases of the reference (crease.cpp): per tree triangle, the sizing each of its edges asks
-  // for beside it (infinity: none), and per tree point the smallest of its edges'.
-  std::vector<std::array<float, 3>> ref_edge_crease;
-  std::vector<float> ref_point_crease;
-  double crease_vertex_estimate = 0;  // the vertices the crease strips add (for the budget)
-  void measure_reference_creases();  // adaptive mode; needs the reference's adjacency, lines and sizing
-  void mark_reference_tips();  // tips sharper than a cube's corner become corners (crease.cpp)
-  double crease_sizing(const geometry::TriangleTree::ClosestHit& hit) const;  // infinity: no crease near
   // ---- the vertex budget (budget.cpp)
   RemeshReport report;
   static constexpr double kBudgetPerEstimate = 4.0;
@@ -206,6 +198,7 @@ struct Remesher::Impl : RemeshScratch {
   // Line vertices whose line turns sharper than a curve (the kinks of a border or feature line)
   // become corners that collapses along the line may still remove (collapse_topology_ok).
   void mark_line_kinks();
+  void mark_reference_tips();  // tips sharper than a cube's corner become corners (tips.cpp)
   bool is_line_kink(Vertex v) const;  // a corner with exactly two feature edges
   // Whether collapsing h along its feature line keeps the line within surface_tolerance() of the
   // reference line (true without a current reference, or for a free vertex).

@@ -15,7 +15,6 @@
 #include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
-#include "remesh_test_shapes.h"
 #include "test_build.h"
 
 using namespace adasculpt;
@@ -39,7 +38,26 @@ SurfaceMesh thin_plate(double thickness) {
 
 // The sweep's gen/sliver_cylinder: radius 0.1, height 4, 48 segments; each side quad is two
 // 0.2-degree needles as tall as the cylinder, the caps are fans around a centre vertex.
-SurfaceMesh sliver_cylinder() { return test::polygonal_prism(48, 0.1, 4.0); }
+SurfaceMesh sliver_cylinder() {
+  constexpr int kAround = 48;
+  constexpr double kRadius = 0.1, kHeight = 4.0, kPi = 3.14159265358979323846;
+  std::vector<std::array<double, 3>> points;
+  for (double z : {0.0, kHeight})
+    for (int i = 0; i < kAround; ++i)
+      points.push_back({kRadius * std::cos(2 * kPi * i / kAround), kRadius * std::sin(2 * kPi * i / kAround), z});
+  points.push_back({0, 0, 0});
+  points.push_back({0, 0, kHeight});
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const auto n = static_cast<std::uint32_t>(kAround);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    triangles.push_back({i, j, n + j});
+    triangles.push_back({i, n + j, n + i});
+    triangles.push_back({2 * n, j, i});
+    triangles.push_back({2 * n + 1, n + i, n + j});
+  }
+  return mesh::build_from_triangles(points, triangles);
+}
 
 struct PlateCase {
   bool adaptive;
