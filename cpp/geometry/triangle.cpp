@@ -132,4 +132,9 @@ Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, 
   return q;
 }
 
+Point closest_point_on_segment(const Point& p, const Point& a, const Point& b) {
+  double t;
+  return closest_on_segment(p, a, b, t);
+}
+
 }  // namespace adasculpt::geometry

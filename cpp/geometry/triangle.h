@@ -47,4 +47,7 @@ inline bool is_degenerate_triangle(const Point& a, const Point& b, const Point& 
 // correct for degenerate triangles (falls back to the closest point on the edges).
 Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, const Point& c, double bary[3]);
 
+// Closest point to p on segment ab (a when the segment has zero length).
+Point closest_point_on_segment(const Point& p, const Point& a, const Point& b);
+
 }  // namespace adasculpt::geometry

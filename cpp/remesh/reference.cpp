@@ -16,8 +16,6 @@
 namespace adasculpt::remesh {
 
 namespace {
-// Turning angle (radians) above which a feature-line vertex counts as a kink, not a curve.
-constexpr double kMaxCurveTurn = M_PI / 6;
 // Closest reference points farther than this many target lengths from a free vertex are
 // taken only along the vertex normal (see project()).
 constexpr double kFarProjection = 0.25;
@@ -270,6 +268,8 @@ void Remesher::Impl::build_reference() {
   }
   tree.build(std::move(points), std::move(triangles));
   has_reference = !tree.empty();
+  mark_line_kinks();
+  mark_reference_tips();
 
   if (opt.adaptive) {
     if (clamp_decides_sizing()) {
@@ -331,7 +331,11 @@ void Remesher::Impl::build_reference() {
   fill.assign(ref_segment_offset.begin(), ref_segment_offset.end() - 1);
   for (std::uint32_t si = 0; si < ref_segments.size(); ++si)
     for (auto i : ref_segments[si]) ref_segment_of_point[fill[i]++] = si;
-  for (Vertex v : mesh.vertices()) segment_hint[v] = UINT32_MAX;
+  // Every line vertex lies on the segments at its own point: the natural first hint.
+  for (Vertex v : mesh.vertices()) {
+    const std::uint32_t first = ref_segment_offset[v.idx];
+    segment_hint[v] = first < ref_segment_offset[v.idx + 1] ? ref_segment_of_point[first] : UINT32_MAX;
+  }
   // Every vertex lies on the triangles of its own fan: the natural first hint.
   for (Vertex v : mesh.vertices()) {
     const std::uint32_t first = ref_fan_offset[v.idx];
@@ -468,50 +472,42 @@ void Remesher::Impl::project(Vertex v, const Vec3& normal) {
     sizing[v] = sizing_of_hit(hit);
 }
 
-namespace {
-Point closest_on_segment(const Point& p, const Point& a, const Point& b) {
-  Vec3 d = b - a;
-  double l2 = glm::dot(d, d);
-  double t = l2 > 0 ? std::clamp(glm::dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
-  return a + t * d;
-}
-}  // namespace
-
 // Like the triangle walk: from the hint segment over the segments sharing an endpoint until
 // none is closer; without a hint, every reference feature segment is tried once.
+std::uint32_t Remesher::Impl::nearest_line_segment(const Point& p, std::uint32_t hint) const {
+  const auto& pts = tree.points();
+  std::uint32_t best = hint;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  auto test = [&](std::uint32_t si) {
+    const Point q = geometry::closest_point_on_segment(p, pts[ref_segments[si][0]], pts[ref_segments[si][1]]);
+    const double d2 = glm::dot(q - p, q - p);
+    if (!(d2 < best_d2)) return false;
+    best_d2 = d2;
+    best = si;
+    return true;
+  };
+  if (best >= ref_segments.size()) {
+    for (std::uint32_t si = 0; si < ref_segments.size(); ++si) test(si);
+    return best;
+  }
+  test(best);
+  for (int step = 0; step < 16; ++step) {
+    const std::uint32_t centre = best;
+    bool improved = false;
+    for (auto end : ref_segments[centre])
+      for (std::uint32_t k = ref_segment_offset[end]; k < ref_segment_offset[end + 1]; ++k)
+        improved |= test(ref_segment_of_point[k]);
+    if (!improved) break;
+  }
+  return best;
+}
+
 void Remesher::Impl::project_onto_feature_line(Vertex v) {
   if (ref_segments.empty()) return;
+  const std::uint32_t s = nearest_line_segment(mesh.position(v), segment_hint[v]);
+  segment_hint[v] = s;
   const auto& pts = tree.points();
-  const Point p = mesh.position(v);
-  std::uint32_t best = segment_hint[v];
-  double best_d2 = std::numeric_limits<double>::infinity();
-  Point best_q = p;
-  auto test = [&](std::uint32_t si) {
-    Point q = closest_on_segment(p, pts[ref_segments[si][0]], pts[ref_segments[si][1]]);
-    double d2 = glm::dot(q - p, q - p);
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best_q = q;
-      best = si;
-      return true;
-    }
-    return false;
-  };
-  if (best == UINT32_MAX || best >= ref_segments.size()) {
-    for (std::uint32_t si = 0; si < ref_segments.size(); ++si) test(si);
-  } else {
-    test(best);
-    for (int step = 0; step < 16; ++step) {
-      std::uint32_t centre = best;
-      bool improved = false;
-      for (auto end : ref_segments[centre])
-        for (std::uint32_t k = ref_segment_offset[end]; k < ref_segment_offset[end + 1]; ++k)
-          improved |= test(ref_segment_of_point[k]);
-      if (!improved) break;
-    }
-  }
-  segment_hint[v] = best;
-  mesh.position(v) = best_q;
+  mesh.position(v) = geometry::closest_point_on_segment(mesh.position(v), pts[ref_segments[s][0]], pts[ref_segments[s][1]]);
 }
 
 }  // namespace adasculpt::remesh

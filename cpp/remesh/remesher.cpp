@@ -115,7 +115,10 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   keep_fan_shapes = guarded;
   relax_vertices();
   keep_fan_shapes = false;
-  if (guarded) project_vertices_guarded();
+  if (guarded) {
+    project_vertices_guarded();
+    undo_line_slides(relaxed_from);
+  }
   undo_crossing_moves();
   fix_bad_faces(kSliverAngleDeg);
   return stats;

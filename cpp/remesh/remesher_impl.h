@@ -2,6 +2,7 @@
 // Internal state of a Remesher, shared by the pass files (split/collapse, flip, relaxation,
 // reference). Not part of the public API.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <vector>
@@ -31,6 +32,11 @@ enum VertexClass : std::uint8_t {
 inline VertexClass vertex_class(int feature_edges) {
   return feature_edges == 0 ? kFree : feature_edges == 2 ? kFeatureLine : kCorner;
 }
+
+// Turning angle (radians) above which a feature-line vertex counts as a kink of the line, not a
+// curve: the sizing does not resolve it as a curve (average_feature_sizing), and it becomes a
+// corner that only a collapse keeping the line near the reference may remove (line_guard.cpp).
+constexpr double kMaxCurveTurn = M_PI / 6;
 
 // What the current iteration may do to a vertex.
 enum Scope : std::uint8_t {
@@ -203,6 +209,25 @@ struct Remesher::Impl : RemeshScratch {
   void project(Vertex v);
   void project(Vertex v, const Vec3& fan_normal);  // free vertices: fan_shape(v).normal
   void project_onto_feature_line(Vertex v);
+  // ---- feature lines and the boundary kept within the tolerance (line_guard.cpp)
+  // The reference feature segment nearest to p, walking from `hint` (every segment without one).
+  std::uint32_t nearest_line_segment(const Point& p, std::uint32_t hint) const;
+  // Line vertices whose line turns sharper than a curve (the kinks of a border or feature line)
+  // become corners that collapses along the line may still remove (collapse_topology_ok).
+  void mark_line_kinks();
+  void mark_reference_tips();  // tips sharper than a cube's corner become corners (tips.cpp)
+  bool is_line_kink(Vertex v) const;  // a corner with exactly two feature edges
+  // Whether collapsing h along its feature line keeps the line within surface_tolerance() of the
+  // reference line (true without a current reference, or for a free vertex).
+  bool line_collapse_stays_near_reference(Halfedge h) const;
+  // After the projection: line vertices whose slide took the line farther than the tolerance from
+  // the reference line go back to before_slide (per scope vertex). Returns those undone.
+  size_t undo_line_slides(const std::vector<Point>& before_slide);
+  bool line_guard_active() const;  // whole-mesh iterations with a current reference that has lines
+  bool line_neighbours(Vertex v, Vertex ends[2]) const;
+  // Whether the reference line points strictly between the segments `from` and `to` all lie
+  // within the tolerance of the segment ab (false when the line between is too long to search).
+  bool line_points_near_segment(std::uint32_t from, std::uint32_t to, const Point& a, const Point& b) const;
 
   // ---- necks narrower than the sizing (neck.cpp)
   bool refine_neck_at(Edge e);

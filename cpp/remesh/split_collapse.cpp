@@ -212,10 +212,10 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
   Halfedge o = mesh.opposite(h);
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   if (scope[v0] != kActive || scope[v1] == kOutside) return false;
-  if (vclass[v0] == kCorner) return false;
+  if (vclass[v0] == kCorner && !is_line_kink(v0)) return false;
   Edge e = mesh.edge(h);
-  if (vclass[v0] == kFeatureLine) {
-    // A feature vertex may only slide along its own feature line.
+  if (vclass[v0] != kFree) {
+    // A feature vertex (or a kink of its line) may only slide along its own feature line.
     if (!is_feature(e)) return false;
   } else if (is_feature(e)) {
     return false;  // a free vertex cannot lie on a feature edge; be safe
@@ -225,7 +225,7 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
     return false;
   if (!mesh.is_boundary(o) && is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o))))
     return false;
-  return mesh.is_collapse_ok(h);
+  return mesh.is_collapse_ok(h) && line_collapse_stays_near_reference(h);
 }
 
 // Geometric admissibility of merging the edge of h into one vertex at `target`: no edge grows
