@@ -80,10 +80,12 @@ void run_stats(const StatsOptions& o) {
   // re-samples an input's own crossing into several pairs; see geometry/inherited_crossings.h). The
   // margin is twice the sampled Hausdorff distance: sampling can only under-estimate it.
   std::optional<size_t> reference_pairs, not_inherited;
+  std::vector<size_t> new_pairs;  // positions in si->pairs of the pairs not inherited
   if (si && distance) {
     const geometry::SelfIntersectionReport ref_si = geometry::self_intersections(*reference, o.si_cap);
     reference_pairs = ref_si.pairs.size();
-    not_inherited = geometry::count_crossings_not_inherited(m, *si, *reference, ref_si, 2.0 * distance->hausdorff);
+    not_inherited = geometry::count_crossings_not_inherited(m, *si, *reference, ref_si, 2.0 * distance->hausdorff,
+                                                            &new_pairs);
   }
 
   if (!o.json) {
@@ -109,9 +111,16 @@ void run_stats(const StatsOptions& o) {
       out["reference_self_intersecting_pairs"] = *reference_pairs;
       out["self_intersecting_pairs_not_inherited"] = *not_inherited;
     }
-    // Where to look: the centroids of the first few crossing pairs' faces.
+    // Where to look: the centroids of the first few crossing pairs' faces (with a reference, the
+    // pairs not at its own crossings).
+    std::vector<size_t> shown;
+    if (!not_inherited)
+      for (size_t i = 0; i < si->pairs.size() && i < 10; ++i) shown.push_back(i);
+    else
+      shown = new_pairs;
     nlohmann::json examples = nlohmann::json::array();
-    for (size_t i = 0; i < si->pairs.size() && i < 10; ++i) {
+    for (size_t k = 0; k < shown.size() && k < 10; ++k) {
+      const size_t i = shown[k];
       nlohmann::json pair = nlohmann::json::array();
       for (std::uint32_t f : {si->pairs[i].first, si->pairs[i].second}) {
         mesh::Vertex v[3];

@@ -37,7 +37,7 @@ Box pair_box(const mesh::SurfaceMesh& m, std::pair<std::uint32_t, std::uint32_t>
 
 size_t count_crossings_not_inherited(const mesh::SurfaceMesh& output, const SelfIntersectionReport& output_pairs,
                                      const mesh::SurfaceMesh& input, const SelfIntersectionReport& input_pairs,
-                                     double margin) {
+                                     double margin, std::vector<size_t>* found) {
   // The input pairs' grown boxes sorted by their low x: an output pair's box can only lie in
   // those whose low x is at most its own and whose low x is within the widest box of it.
   std::vector<Box> grown;
@@ -52,13 +52,15 @@ size_t count_crossings_not_inherited(const mesh::SurfaceMesh& output, const Self
   }
   std::sort(grown.begin(), grown.end(), [](const Box& a, const Box& b) { return a.lo.x < b.lo.x; });
   size_t not_inherited = 0;
-  for (const auto& p : output_pairs.pairs) {
-    const Box b = pair_box(output, p);
+  for (size_t i = 0; i < output_pairs.pairs.size(); ++i) {
+    const Box b = pair_box(output, output_pairs.pairs[i]);
     auto it = std::lower_bound(grown.begin(), grown.end(), b.lo.x - widest,
                                [](const Box& g, double x) { return g.lo.x < x; });
     bool inherited = false;
     for (; it != grown.end() && it->lo.x <= b.lo.x && !inherited; ++it) inherited = it->contains(b);
-    if (!inherited) ++not_inherited;
+    if (inherited) continue;
+    ++not_inherited;
+    if (found) found->push_back(i);
   }
   return not_inherited;
 }

@@ -10,6 +10,7 @@
 // crossing pair grown by the output's distance to the input (every output face lies within that
 // distance of the input, so the faces that re-sample an input crossing lie in its grown box).
 #include <cstddef>
+#include <vector>
 
 #include "geometry/self_intersections.h"
 #include "mesh/surface_mesh.h"
@@ -18,9 +19,10 @@ namespace adasculpt::geometry {
 
 // The pairs of `output_pairs` (faces of `output`) that are not inherited from a crossing pair of
 // `input_pairs` (faces of `input`); `margin` is the growth of the input pairs' boxes, e.g. the
-// Hausdorff distance between the two surfaces.
+// Hausdorff distance between the two surfaces. With `found`, their positions in output_pairs.pairs
+// are appended there (where to look).
 size_t count_crossings_not_inherited(const mesh::SurfaceMesh& output, const SelfIntersectionReport& output_pairs,
                                      const mesh::SurfaceMesh& input, const SelfIntersectionReport& input_pairs,
-                                     double margin);
+                                     double margin, std::vector<size_t>* found = nullptr);
 
 }  // namespace adasculpt::geometry

@@ -61,12 +61,7 @@ bool Remesher::Impl::collapse_stays_near_reference(Halfedge h, const Point& targ
     for (Halfedge out : mesh.halfedges(centre)) {
       const Vertex w = mesh.to_vertex(out);
       if (w == other || !is_feature(mesh.edge(out))) continue;
-      const Point& a = target;
-      const Point& b = mesh.position(w);
-      const Vec3 ab = b - a;
-      const double len2 = glm::dot(ab, ab);
-      const double t = len2 > 0 ? std::clamp(glm::dot(mesh.position(centre) - a, ab) / len2, 0.0, 1.0) : 0.0;
-      const Vec3 d = mesh.position(centre) - (a + t * ab);
+      const Vec3 d = mesh.position(centre) - geometry::closest_point_on_segment(mesh.position(centre), target, mesh.position(w));
       if (glm::dot(d, d) > limit2) return false;
     }
     return true;
