@@ -453,9 +453,6 @@ SAMPLE_MESHES = ["repo/eight.off", "repo/fandisk.off", "gen/fan_bar.off", "gen/t
 # the sliver cylinder at fine epsilon are gone since the crossing guard, cpp/remesh/crossing_guard.h); with features
 # off, the plate's rim (0.002 thick) and the sharp edges of fan_bar, pinion_small and the cylinder's caps are still
 # cut by more than 2 epsilon at some settings; elephant-with-holes (input with 173 crossing pairs and holes) misses at epsilon 0.5 and 1 %.
-# Judged by the pairs not at the input's own crossings (cpp/geometry/inherited_crossings.h), elephant-with-holes
-# also keeps 2-6 crossing pairs about 1 % of the diagonal beside its input's crossings at the coarser settings:
-# the guard lets operations beside crossings the input already has through (crossing_guard.h).
 # `--check` reports them under "known open" instead of failing; caps, crashes and monotone vertex counts are never
 # excused. Keep the entries narrow: a fixed miss must fail the check when it comes back. (kind, mesh regex, setting
 # regex matched at the start of the setting name).
@@ -464,7 +461,6 @@ KNOWN_OPEN = [
     ("hausdorff", r"gen/sliver_cylinder\.off", r"eps(0\.01|0\.05|0\.2)-"),
     ("hausdorff", r"gen/fan_bar\.off", r"eps(0\.05|0\.2|0\.5)-"),
     ("hausdorff", r"cgal/(elephant-with-holes|pinion_small)\.off", r"eps(0\.5|1)-"),
-    ("new crossings", r"cgal/elephant-with-holes\.off", r"(eps(0\.5|1|2|5)-|len8)"),
 ]
 
 
