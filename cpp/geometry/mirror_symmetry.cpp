@@ -4,30 +4,9 @@
 #include <cstdint>
 #include <cstring>
 
-namespace adasculpt::geometry {
+#include "geometry/position_index.h"
 
-namespace {
-// A position's exact bit pattern, with -0 read as +0 (the plane's vertices may carry either).
-std::uint64_t bits_of(double c) {
-  if (c == 0) c = 0.0;
-  std::uint64_t b;
-  std::memcpy(&b, &c, sizeof b);
-  return b;
-}
-std::uint64_t hash_of(const Point& p) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull;
-  for (int i = 0; i < 3; ++i) {
-    h = (h ^ bits_of(p[i])) * 0xff51afd7ed558ccdull;
-    h ^= h >> 32;
-  }
-  return h;
-}
-bool same_position(const Point& a, const Point& b) {
-  for (int i = 0; i < 3; ++i)
-    if (bits_of(a[i]) != bits_of(b[i])) return false;
-  return true;
-}
-}  // namespace
+namespace adasculpt::geometry {
 
 std::vector<mesh::Vertex> find_mirror_map(const mesh::SurfaceMesh& mesh, int axis) {
   std::vector<mesh::Vertex> image;
@@ -49,7 +28,7 @@ std::vector<mesh::Vertex> find_mirror_map(const mesh::SurfaceMesh& mesh, int axi
   std::vector<std::uint32_t> table(size, kEmpty);
   for (mesh::Vertex v : mesh.vertices()) {
     const Point& p = mesh.position(v);
-    size_t slot = hash_of(p) & mask;
+    size_t slot = position_hash(p) & mask;
     for (; table[slot] != kEmpty; slot = (slot + 1) & mask)
       if (same_position(mesh.position(mesh::Vertex(table[slot])), p)) return image;  // two vertices at one point
     table[slot] = v.idx;
@@ -58,7 +37,7 @@ std::vector<mesh::Vertex> find_mirror_map(const mesh::SurfaceMesh& mesh, int axi
   for (mesh::Vertex v : mesh.vertices()) {
     Point p = mesh.position(v);
     p[axis] = -p[axis];
-    size_t slot = hash_of(p) & mask;
+    size_t slot = position_hash(p) & mask;
     for (; table[slot] != kEmpty; slot = (slot + 1) & mask)
       if (same_position(mesh.position(mesh::Vertex(table[slot])), p)) break;
     if (table[slot] == kEmpty) return {};

@@ -11,63 +11,73 @@
 namespace adasculpt::remesh {
 
 bool Remesher::enable_mirror(int axis) {
-  Impl& m = *impl_;
-  std::vector<Vertex> kept = std::move(m.kept_mirror);
-  const bool reuse = m.kept_mirror_axis == axis && kept.size() == m.mesh.vertices_size() &&
-                     !(m.opt.feature_angle_deg > 0) && !mesh::find_mask(m.mesh).is_valid();
   disable_mirror();
-  if (reuse) {  // the last stroke's map (disable_mirror(true)): no search, no pass over the mesh
-    m.mirror = m.mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
-    m.mirror.vector() = std::move(kept);
-    m.mirror_axis = axis;
-    return true;
-  }
-  std::vector<Vertex> image = geometry::find_mirror_map(m.mesh, axis);
-  if (image.empty()) return false;
+  std::vector<Vertex> image = geometry::find_mirror_map(impl_->mesh, axis);
+  return !image.empty() && impl_->start_mirroring(axis, image, false);
+}
+
+bool Remesher::enable_mirror(int axis, std::vector<Vertex>& known_map) {
+  disable_mirror();
+  if (known_map.size() != impl_->mesh.vertices_size()) return false;
+  // Between strokes every sizing is 0 (reset_slots), so the pairs already agree on it.
+  return impl_->start_mirroring(axis, known_map, true);
+}
+
+bool Remesher::Impl::start_mirroring(int axis, std::vector<Vertex>& image, bool lent) {
   // A mask that is not its own mirror image would stop one side of a pair and not the other.
-  if (const mesh::VertexProperty<float> mask = mesh::find_mask(m.mesh); mask.is_valid())
-    for (Vertex v : m.mesh.vertices())
+  if (const mesh::VertexProperty<float> mask = mesh::find_mask(mesh); mask.is_valid())
+    for (Vertex v : mesh.vertices())
       if (mask[v] != mask[image[v.idx]]) return false;
-  m.mirror = m.mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
-  m.mirror.vector() = std::move(image);
-  m.mirror_axis = axis;
+  mirror = mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
+  mirror.vector().swap(image);
+  mirror_axis = axis;
+  mirror_lent = lent;
   // Feature flags and sizes come from dihedral angles and curvature, computed per side: make the
   // pairs agree (an edge is a feature when either side says so). Only feature edges need their
   // image looked up; the connectivity elsewhere is checked edge by edge as the passes go. The
   // marks added are listed: disable_mirror takes them back, so that a kept remesher's marks stay
-  // those a new one would give (reset_slots).
-  for (Edge e : m.mesh.edges()) {
-    if (!m.feature[e]) continue;
-    const Edge img = m.mirror_edge(e);
-    if (!img.is_valid()) {
-      disable_mirror();
-      return false;
+  // those a new one would give (reset_slots). With features off the marks are the boundary's,
+  // which a symmetric mesh's pairs share: no pass.
+  if (opt.feature_angle_deg > 0) {
+    for (Edge e : mesh.edges()) {
+      if (!feature[e]) continue;
+      const Edge img = mirror_edge(e);
+      if (!img.is_valid()) {
+        if (lent) image.swap(mirror.vector());  // back to the lender, as it was
+        mirror_lent = false;
+        remove_mirror();
+        return false;
+      }
+      if (!feature[img]) mirror_marked.push_back(img);
+      feature[img] = 1;
     }
-    if (!m.feature[img]) m.mirror_marked.push_back(img);
-    m.feature[img] = 1;
   }
-  for (Vertex v : m.mesh.vertices()) {
-    const Vertex w = m.mirror[v];
-    if (v.idx < w.idx) m.sizing[w] = m.sizing[v];
-  }
+  if (!lent)
+    for (Vertex v : mesh.vertices()) {
+      const Vertex w = mirror[v];
+      if (v.idx < w.idx) sizing[w] = sizing[v];
+    }
   return true;
 }
 
-void Remesher::disable_mirror(bool keep_map) {
+bool Remesher::disable_mirror(std::vector<Vertex>* give_back) {
   Impl& m = *impl_;
-  m.kept_mirror.clear();
-  m.kept_mirror_axis = -1;
-  if (keep_map && m.mirror_axis >= 0 && m.mirror.is_valid()) {
-    m.kept_mirror = std::move(m.mirror.vector());
-    m.kept_mirror_axis = m.mirror_axis;
-  }
-  m.mirror_axis = -1;
+  const bool whole = m.mirror_axis >= 0;
+  const bool handed_back = give_back && m.mirror_lent && m.mirror.is_valid();
+  if (handed_back) give_back->swap(m.mirror.vector());
+  m.mirror_lent = false;
+  m.remove_mirror();
+  return whole && handed_back;
+}
+
+void Remesher::Impl::remove_mirror() {
+  mirror_axis = -1;
   // (An edge the passes split or removed since is around the stroke's touched vertices: the
   // caller's reset_slots marks it again.)
-  for (Edge e : m.mirror_marked)
-    if (e.idx < m.mesh.edges_size()) m.feature[e] = 0;
-  m.mirror_marked.clear();
-  if (m.mirror.is_valid()) m.mesh.remove_vertex_property(m.mirror);
+  for (Edge e : mirror_marked)
+    if (e.idx < mesh.edges_size()) feature[e] = 0;
+  mirror_marked.clear();
+  if (mirror.is_valid()) mesh.remove_vertex_property(mirror);
 }
 
 const std::vector<Vertex>* Remesher::mirror_map() const {

@@ -113,14 +113,18 @@ class Remesher {
   // overlaps it near the plane, where doing both is not certain to stay valid, is left out.
   // Returns false, and leaves mirroring off, when the mesh is not exactly symmetric.
   bool enable_mirror(int axis);
-  // Mirroring ends (a stroke ends). keep_map: since enable_mirror the mesh changed only through
-  // this remesher's mirrored region iterations and the mirrored stamps of one brush stroke, which
-  // keep it exactly symmetric and the map up to date, so the map is still the mesh's: the next
-  // enable_mirror on the same axis takes it instead of searching the whole mesh (with features off
-  // and no mask, where nothing else in enable_mirror needs a pass: boundary marks of a symmetric
-  // mesh are symmetric, and every sizing is 0 between strokes). Any other change to the mesh must
-  // end with keep_map false (or no mirroring).
-  void disable_mirror(bool keep_map = false);
+  // As enable_mirror(axis), with the map known (geometry::MirrorTracker: what find_mirror_map
+  // would give now, sized to the vertex slots), and the mesh between strokes (every sizing 0, as
+  // reset_slots leaves it): no search and, with features off and no mask, no pass over the mesh.
+  // The map is borrowed: its contents are swapped in (`known_map` is left holding other contents)
+  // and handed back by disable_mirror(&known_map); false (mask or feature marks not symmetric)
+  // leaves it as it was.
+  bool enable_mirror(int axis, std::vector<Vertex>& known_map);
+  // Mirroring ends (a stroke ends). give_back: a borrowed map goes back there, updated by the
+  // passes' splits and collapses; the result says whether it is the mesh's map (the stroke
+  // mirrored to its end, so the mesh changed only through mirrored stamps and passes, which keep
+  // it exactly symmetric) or must be found again (symmetry was lost on the way).
+  bool disable_mirror(std::vector<Vertex>* give_back = nullptr);
   // While mirroring: the vertex at v's mirror image (vertices the iterations add included),
   // indexed by vertex index; nullptr when mirroring is off.
   const std::vector<Vertex>* mirror_map() const;

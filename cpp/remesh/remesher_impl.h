@@ -191,8 +191,6 @@ struct Remesher::Impl : RemeshScratch {
   void refresh_marks_around(const std::vector<Vertex>& vertices);
   std::vector<Vertex> reset_ring;  // scratch: the vertices whose class is derived again
   std::vector<Edge> mirror_marked;  // edges enable_mirror marked: disable_mirror unmarks them
-  std::vector<Vertex> kept_mirror;  // disable_mirror(true): the map, for the next enable_mirror
-  int kept_mirror_axis = -1;
   std::vector<std::uint8_t> feature_edges_per_vertex() const;  // per vertex slot, saturating at 255
   void compute_sizing_from_current_surface(const std::vector<Vertex>& vertices);
   // Lowers the sizing of free vertices where the part is thinner than it (thickness.cpp); needs
@@ -259,6 +257,11 @@ struct Remesher::Impl : RemeshScratch {
   // ---- mirror symmetry (mirror.cpp): see Remesher::enable_mirror
   int mirror_axis = -1;         // >= 0 while mirroring
   VertexProperty<Vertex> mirror;  // the image of each vertex while mirroring
+  bool mirror_lent = false;       // its vector is the caller's (enable_mirror with a known map)
+  // enable_mirror's checks and set-up with the map `image` (swapped in; on failure a lent map is
+  // swapped back untouched). lent: the caller's map, sizes all 0 (between strokes).
+  bool start_mirroring(int axis, std::vector<Vertex>& image, bool lent);
+  void remove_mirror();  // mirroring off, enable_mirror's feature marks taken back
   std::vector<Vertex> near_scratch;
   Point mirrored(Point p) const {
     p[mirror_axis] = -p[mirror_axis];

@@ -192,7 +192,8 @@ void BrushStroker::sample(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, c
     if (symmetric()) {
       // An exactly symmetric mesh stays so, vertex for vertex: the remesher pairs its operations
       // across the plane and the deformer mirrors the first stamp (see Remesher::enable_mirror).
-      if (remesher.enable_mirror(settings_.symmetry_axis)) {
+      const int axis = settings_.symmetry_axis;
+      if (mirror_start_ ? mirror_start_(mesh, remesher, axis) : remesher.enable_mirror(axis)) {
         mirror_seed_ = (*remesher.mirror_map())[seed_.idx];
       } else {
         Point unused;

@@ -79,6 +79,11 @@ class BrushStroker {
   // 1.1M triangles); the Session gives a query of its slot tree, which follows the changes.
   using Locator = std::function<mesh::Vertex(const mesh::SurfaceMesh&, const Point&, Point* on_surface)>;
   void set_locator(Locator locator) { locator_ = std::move(locator); }
+  // Starts the remesher's mirroring for a symmetric stroke and says whether it runs. Without one,
+  // Remesher::enable_mirror searches the whole mesh for the map; the Session lends the map it
+  // keeps up to date through every change (geometry::MirrorTracker).
+  using MirrorStart = std::function<bool(const mesh::SurfaceMesh&, remesh::Remesher&, int axis)>;
+  void set_mirror_start(MirrorStart start) { mirror_start_ = std::move(start); }
 
  private:
   void stamp(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const Point& target, double pressure, BrushFrame& f);
@@ -104,6 +109,7 @@ class BrushStroker {
   mesh::Vertex last_stroke_seed_;
   StartHook start_hook_;  // where the last stamp was: the next stroke's start walks from it
   Locator locator_;
+  MirrorStart mirror_start_;
 };
 
 }  // namespace adasculpt::sculpt

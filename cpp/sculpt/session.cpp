@@ -15,6 +15,7 @@
 
 #include "geometry/angle_figures.h"
 #include "geometry/face_slot_tree.h"
+#include "geometry/mirror_tracker.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
 #include "mesh/flat_walk.h"
@@ -110,6 +111,13 @@ struct Session::Impl {
   // refitted where strokes, grabs, undo and redo changed it. The changes reach it from `changes`
   // (noted_* say how much of its lists it has seen), so clear_changes() notes them first.
   mutable geometry::FaceSlotTree slot_tree;
+  // find_mirror_map's answer kept through every change at the change's cost (mirror_tracker.h):
+  // a symmetric stroke borrows the map (no search over the mesh after an undo, a redo, a grab or
+  // a one-sided stroke), and a mesh that is not symmetric keeps a witness instead of being read
+  // whole at every symmetric stroke. mirror_lent: the running stroke's remesher holds its map.
+  geometry::MirrorTracker mirror;
+  bool mirror_lent = false;
+  bool mirror_tracking = true;  // off (tests): every symmetric stroke searches, as a new session does
   // The stats shown after every stroke (quick_quality), kept from the same changes.
   mutable geometry::AngleFigures angle_figures;
   mutable size_t noted_vertices = 0, noted_faces = 0;
@@ -173,6 +181,8 @@ struct Session::Impl {
     // at the first stroke or press after the load, where it would be a hitch.
     slot_tree.invalidate();
     slot_tree.sync(mesh);
+    mirror.forget();
+    mirror_lent = false;
     angle_figures.invalidate();
     changes.everything = true;
     changes.topology_changed = true;
@@ -258,18 +268,32 @@ struct Session::Impl {
     history.reset(mesh);
     history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
   }
+  // A symmetric stroke starts: the remesher borrows the kept map (or searches, with tracking off).
+  bool start_mirror(const mesh::SurfaceMesh& m, remesh::Remesher& r, int axis) {
+    if (!mirror_tracking) return r.enable_mirror(axis);
+    std::vector<mesh::Vertex>* map = mirror.map(m, axis);
+    mirror_lent = map && r.enable_mirror(axis, *map);
+    return mirror_lent;
+  }
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
     if (!grabbing && !brushing && !masking) return;
     if (grabbing) grab.end();
     if (brushing || grabbing) {
       // A stroke that mirrored to its end changed the mesh only through its mirrored stamps and
-      // passes: the remesher keeps the mirror map for the next symmetric stroke (no search over
-      // the mesh). Anything else forgets it.
-      remesher->disable_mirror(brushing && remesher->mirror_map() != nullptr);
+      // passes: the map it borrowed comes back as the mesh's map. Anything else is followed from
+      // the slots it touched.
+      const bool whole_map = remesher->disable_mirror(mirror_lent ? mirror.lent_storage() : nullptr);
       // The sizing the stroke or grab measured goes back to unmeasured and the marks around what
       // it moved follow the new surface: the next one starts as with a new remesher.
       move_step_touched();
+      if (whole_map) {
+        mirror.follow_with_map(mesh, step_touched);
+      } else {
+        if (mirror_lent) mirror.forget_map();  // it came back not matching the mesh
+        mirror.follow(mesh, step_touched);
+      }
+      mirror_lent = false;
       remesher->reset_slots(step_touched);
       remesher_kept = true;
       component_box.follow(mesh, step_touched);
@@ -299,9 +323,9 @@ struct Session::Impl {
       // they held before it. reset_slots gives them (and the marks around them) a new remesher's
       // values, without its pass over the mesh.
       if (remesher) {
-        remesher->disable_mirror();  // a kept mirror map is the state after the step
         remesher->reset_slots(touched);
       }
+      mirror.follow(mesh, touched);
       component_box.follow(mesh, touched);
       component_diagonal = 0;  // the next stroke takes the diagonal the mesh has now (component_box)
       changes.topology_changed = true;
@@ -317,6 +341,7 @@ Session::Session() : impl_(std::make_unique<Impl>()) {
   s.brush.set_locator([&s](const mesh::SurfaceMesh&, const Point& p, Point* on_surface) {
     return s.locate_press(p, on_surface, "brush");
   });
+  s.brush.set_mirror_start([&s](const mesh::SurfaceMesh& m, remesh::Remesher& r, int axis) { return s.start_mirror(m, r, axis); });
 }
 Session::~Session() = default;
 
@@ -753,6 +778,15 @@ size_t Session::memory_bytes() const {
 }
 
 void Session::set_history_verification(bool on) { impl_->history.set_verify(on); }
+const std::vector<mesh::Vertex>* Session::mirror_map(int axis) {
+  Impl& s = *impl_;
+  s.require_mesh("mirror_map");
+  s.end_grab();
+  return s.mirror.map(s.mesh, axis);
+}
+size_t Session::mirror_settled() const { return impl_->mirror.last_settled(); }
+void Session::set_mirror_tracking(bool on) { impl_->mirror_tracking = on; }
+
 size_t Session::history_full_diffs() const { return impl_->history.full_diffs(); }
 
 }  // namespace adasculpt::sculpt

@@ -205,6 +205,13 @@ class Session {
   // stayed near the touched vertices, as strokes and grabs do).
   void set_history_verification(bool on);
   size_t history_full_diffs() const;
+  // The mirror map the next symmetric stroke across `axis` takes (geometry::find_mirror_map's
+  // answer, kept up to date through every change at its cost: geometry::MirrorTracker), nullptr
+  // when the mesh is not exactly symmetric; and how many vertices that answer had to settle.
+  // Tracking off (tests): every symmetric stroke searches the whole mesh, as before.
+  const std::vector<mesh::Vertex>* mirror_map(int axis);
+  size_t mirror_settled() const;
+  void set_mirror_tracking(bool on);
 
  private:
   struct Impl;

@@ -411,6 +411,53 @@ void BM_SymmetricStrokes(benchmark::State& state) {
 }
 BENCHMARK(BM_SymmetricStrokes)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// Symmetric strokes after a change that is not a symmetric stroke (issue 18 item 3): on 1 and 8 pairs
+// of a bunny and its mirror image (139k, 1.1M triangles; range 0), range 1 picks the scene:
+// 0 = undo, then a symmetric stroke (the undo restores slots the map had paired);
+// 1 = after one one-sided stroke the mesh is not symmetric, then symmetric strokes (each one
+//     asks whether the mesh is symmetric again).
+// Under callgrind, --toggle-collect='*symmetric_stroke_after_change*' counts the measured part.
+__attribute__((noinline)) void symmetric_stroke_after_change(sculpt::Session& s, sculpt::RenderBuffers& rb,
+                                                             const sculpt::BrushStroke& stroke, bool undo_first) {
+  if (undo_first) {
+    s.undo();
+    viewer_frame(s, rb);
+  }
+  stroke_with_frames(s, rb, stroke);
+}
+
+void BM_SymmetricStrokesAfterChange(benchmark::State& state) {
+  const int pairs = int(state.range(0));
+  const bool undo_first = state.range(1) == 0;
+  const mesh::SurfaceMesh m = scene(2 * pairs, true);
+  std::vector<sculpt::BrushStroke> strokes = twelve_short_strokes(m);
+  for (sculpt::BrushStroke& st : strokes) st.settings.symmetry_axis = 0;
+  std::vector<double> cpu_ms;
+  for (auto _ : state) {
+    sculpt::Session s;
+    sculpt::RenderBuffers rb;
+    open_scene(s, rb, m);
+    stroke_with_frames(s, rb, strokes[0]);  // the session's first symmetric stroke searches
+    if (!undo_first) {
+      sculpt::BrushStroke one_sided = strokes[1];
+      one_sided.settings.symmetry_axis = -1;
+      stroke_with_frames(s, rb, one_sided);
+    }
+    for (size_t k = 0; k < 11; ++k) {
+      const double cpu = thread_cpu_ms();
+      symmetric_stroke_after_change(s, rb, strokes[(k + 2) % strokes.size()], undo_first);
+      cpu_ms.push_back(thread_cpu_ms() - cpu);
+    }
+  }
+  state.counters["cpu_ms_median"] = percentile(cpu_ms, 0.5);
+  std::printf("symmetric-strokes-after-change scene=%s triangles=%zu cpu_ms median=%.2f p95=%.2f\n",
+              undo_first ? "undo-then-stroke" : "not-symmetric", m.n_faces(), percentile(cpu_ms, 0.5),
+              percentile(cpu_ms, 0.95));
+}
+BENCHMARK(BM_SymmetricStrokesAfterChange)
+    ->Args({1, 0})->Args({8, 0})->Args({1, 1})->Args({8, 1})
+    ->Unit(benchmark::kMillisecond)->Iterations(1);
+
 // Per-stroke trace (issue 18): the scene's 12 strokes in several sessions on one loaded scene, each
 // stroke timed in its parts: brush_begin, the stamps (with their viewer frames), brush_end (the undo
 // step) and its viewer frame. Tells a per-mesh cost in a session's first stroke (or in the process's

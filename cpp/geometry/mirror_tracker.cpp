@@ -1,0 +1,181 @@
+#include "geometry/mirror_tracker.h"
+
+#include "geometry/mirror_symmetry.h"
+
+#include <algorithm>
+
+namespace adasculpt::geometry {
+
+void MirrorTracker::forget() {
+  axis_ = -1;
+  index_.clear();
+  map_.clear();
+  clear_unknown();
+  all_unknown_ = true;
+  witness_ = mesh::Vertex();
+}
+
+void MirrorTracker::clear_unknown() {
+  for (mesh::Vertex v : unknown_)
+    if (v.idx < in_unknown_.size()) in_unknown_[v.idx] = 0;
+  unknown_.clear();
+}
+
+void MirrorTracker::mark_unknown(mesh::Vertex v) {
+  if (all_unknown_ || v.idx >= in_unknown_.size() || in_unknown_[v.idx]) return;
+  in_unknown_[v.idx] = 1;
+  unknown_.push_back(v);
+}
+
+void MirrorTracker::forget_map() {
+  clear_unknown();
+  all_unknown_ = true;
+}
+
+// The witness's own position is compared (it may have moved back and forth): untouched vertices
+// keep theirs, so only a touched one can have come to lie at the witness's mirror position.
+bool MirrorTracker::witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) const {
+  if (!witness_.is_valid() || witness_.idx >= m.vertices_size() || m.is_deleted(witness_) ||
+      !same_position(m.position(witness_), witness_point_))
+    return false;
+  const Point q = mirrored(witness_point_);
+  for (mesh::Vertex t : touched)
+    if (t.idx < m.vertices_size() && !m.is_deleted(t) && same_position(m.position(t), q)) return false;
+  return true;
+}
+
+void MirrorTracker::follow(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) {
+  if (axis_ < 0) return;
+  const size_t n = m.vertices_size();
+  if (index_.built()) index_.update(m, touched);
+  if (witness_.is_valid() && !witness_holds(m, touched)) witness_ = mesh::Vertex();
+  if (!all_unknown_) {
+    // D grows by the touched slots and by their images before the change, the slots an undo cut
+    // off the end included (their partners stay, paired with nothing).
+    in_unknown_.resize(std::max(n, in_unknown_.size()), 0);
+    auto touch = [&](mesh::Vertex t) {
+      mark_unknown(t);
+      if (t.idx < map_.size() && map_[t.idx].is_valid()) mark_unknown(map_[t.idx]);
+    };
+    for (size_t v = n; v < map_.size(); ++v) touch(mesh::Vertex(mesh::Index(v)));
+    for (mesh::Vertex t : touched) touch(t);
+    if (unknown_.size() > n / 8 + 64) forget_map();
+  }
+  map_.resize(n, mesh::Vertex());
+  if (in_unknown_.size() > n) {
+    for (size_t v = n; v < in_unknown_.size(); ++v) in_unknown_[v] = 0;  // listed ones are skipped when settled
+  }
+}
+
+void MirrorTracker::follow_with_map(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) {
+  if (index_.built()) index_.update(m, touched);
+  clear_unknown();
+  all_unknown_ = false;
+  witness_ = mesh::Vertex();
+  map_.resize(m.vertices_size(), mesh::Vertex());
+}
+
+// find_mirror_map's first test: a vertex at the far end of a lopsided extent has no vertex at its
+// mirror position (the whole mesh is read, but nothing is hashed).
+bool MirrorTracker::find_extent_witness(const mesh::SurfaceMesh& m) {
+  mesh::Vertex lo, hi;
+  for (mesh::Vertex v : m.vertices()) {
+    const double c = m.position(v)[axis_];
+    if (!lo.is_valid() || c < m.position(lo)[axis_]) lo = v;
+    if (!hi.is_valid() || c > m.position(hi)[axis_]) hi = v;
+  }
+  if (!lo.is_valid()) return false;
+  const double l = m.position(lo)[axis_], h = m.position(hi)[axis_];
+  if (l == -h) return false;
+  witness_ = h > -l ? hi : lo;
+  witness_point_ = m.position(witness_);
+  return true;
+}
+
+bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
+  last_settled_ = 0;
+  if (all_unknown_ && find_extent_witness(m)) return false;
+  const size_t n = m.vertices_size();
+  if (all_unknown_ && !index_.built()) {
+    // The mesh's first question: a search is the quickest whole answer (its table is half the
+    // index's size, and the index is built only once the changes need settling).
+    std::vector<mesh::Vertex> image = find_mirror_map(m, axis_);
+    if (!image.empty()) {
+      last_settled_ = m.n_vertices();
+      map_.swap(image);
+      map_.resize(n, mesh::Vertex());
+      all_unknown_ = false;
+      return true;
+    }
+  }
+  // A fresh index knows whether positions are distinct: then every probe stops at its match and
+  // the pairs need no check (v's image's image is the one vertex at v's position).
+  bool distinct = false;
+  if (!index_.built() && !(distinct = index_.build(m))) return false;
+  in_unknown_.resize(n, 0);
+  const auto settle_one = [&](mesh::Vertex v) {
+    ++last_settled_;
+    const Point p = m.position(v);
+    mesh::Vertex u;
+    const int found = index_.count_at(m, mirrored(p), &u);
+    if (found == 0) {
+      witness_ = v;
+      witness_point_ = p;
+    }
+    // An image outside D has its partner outside D at v's position: two vertices at one point.
+    if (found != 1 || (!all_unknown_ && !in_unknown_[u.idx])) return false;
+    map_[v.idx] = u;
+    return true;
+  };
+  const auto pairs_up = [&](mesh::Vertex v) { return map_[map_[v.idx].idx] == v; };
+  if (all_unknown_ && distinct) {
+    std::fill(map_.begin(), map_.end(), mesh::Vertex());
+    for (mesh::Vertex v : m.vertices()) {
+      ++last_settled_;
+      const Point p = m.position(v);
+      const mesh::Vertex u = index_.find(m, mirrored(p));
+      if (!u.is_valid()) {
+        witness_ = v;
+        witness_point_ = p;
+        return false;
+      }
+      map_[v.idx] = u;
+    }
+  } else if (all_unknown_) {
+    std::fill(map_.begin(), map_.end(), mesh::Vertex());
+    for (mesh::Vertex v : m.vertices())
+      if (!settle_one(v)) return false;
+    for (mesh::Vertex v : m.vertices())
+      if (!pairs_up(v)) return false;
+  } else {
+    for (mesh::Vertex v : unknown_) {
+      if (v.idx >= n || m.is_deleted(v)) {
+        if (v.idx < n) map_[v.idx] = mesh::Vertex();
+        continue;
+      }
+      if (!settle_one(v)) return false;
+    }
+    for (mesh::Vertex v : unknown_)
+      if (v.idx < n && !m.is_deleted(v) && !pairs_up(v)) return false;
+  }
+  clear_unknown();
+  all_unknown_ = false;
+  return true;
+}
+
+std::vector<mesh::Vertex>* MirrorTracker::map(const mesh::SurfaceMesh& m, int axis) {
+  last_settled_ = 0;
+  if (axis < 0 || axis > 2 || m.n_vertices() == 0) return nullptr;
+  if (axis != axis_) {
+    axis_ = axis;
+    forget_map();
+    witness_ = mesh::Vertex();
+    map_.assign(m.vertices_size(), mesh::Vertex());
+  }
+  map_.resize(m.vertices_size(), mesh::Vertex());
+  if (witness_.is_valid()) return nullptr;
+  if (!all_unknown_ && unknown_.empty()) return &map_;
+  return settle(m) ? &map_ : nullptr;
+}
+
+}  // namespace adasculpt::geometry

@@ -1,0 +1,183 @@
+// The mirror map a session keeps through every change (geometry::MirrorTracker): after random
+// sequences of symmetric and one-sided strokes, grabs, undos, redos, masks and feature settings it
+// must be find_mirror_map's answer (or "not symmetric" when that finds none), and a symmetric stroke
+// that takes it must give the mesh a stroke that searches gives, slot for slot.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/mirror_symmetry.h"
+#include "geometry/position_index.h"
+#include "kept_remesher_test_util.h"
+#include "mesh/primitives.h"
+#include "sculpt/session.h"
+#include "undo_test_util.h"
+
+namespace adasculpt {
+namespace {
+
+// The session's map against a search over the whole mesh: equal on every live slot, or both none.
+::testing::AssertionResult map_as_searched(sculpt::Session& s, int axis) {
+  const std::vector<mesh::Vertex>* kept = s.mirror_map(axis);
+  const std::vector<mesh::Vertex> searched = geometry::find_mirror_map(s.mesh(), axis);
+  if (!kept || searched.empty()) {
+    if (!kept && searched.empty()) return ::testing::AssertionSuccess() << "not symmetric";
+    return ::testing::AssertionFailure() << (kept ? "kept a map, the search finds none" : "kept none, the search finds one");
+  }
+  if (kept->size() < s.mesh().vertices_size()) return ::testing::AssertionFailure() << "the kept map is short";
+  for (mesh::Vertex v : s.mesh().vertices())
+    if ((*kept)[v.idx] != searched[v.idx])
+      return ::testing::AssertionFailure() << "vertex " << v.idx << ": kept " << (*kept)[v.idx].idx << ", searched "
+                                           << searched[v.idx].idx;
+  return ::testing::AssertionSuccess() << "symmetric";
+}
+
+TEST(GeometryPositionIndex, FollowsRandomMovesExactly) {
+  mesh::SurfaceMesh m = mesh::make_icosphere(2);
+  geometry::PositionIndex index;
+  ASSERT_TRUE(index.build(m));
+  std::mt19937 rng(3);
+  std::vector<Point> spots;  // positions vertices jump to: several land on one spot
+  for (mesh::Vertex v : m.vertices())
+    if (v.idx % 17 == 0) spots.push_back(m.position(v));
+  for (int round = 0; round < 200; ++round) {
+    std::vector<mesh::Vertex> moved;
+    for (int k = 0; k < 5; ++k) {
+      const mesh::Vertex v(mesh::Index(rng() % m.vertices_size()));
+      m.position(v) = spots[rng() % spots.size()];
+      moved.push_back(v);
+    }
+    index.update(m, moved);
+    for (const Point& p : spots) {
+      int expected = 0;
+      for (mesh::Vertex v : m.vertices()) expected += geometry::same_position(m.position(v), p);
+      mesh::Vertex first;
+      ASSERT_EQ(index.count_at(m, p, &first), expected) << "round " << round;
+      if (expected > 0) {
+        EXPECT_TRUE(geometry::same_position(m.position(first), p));
+      }
+    }
+  }
+}
+
+// One random step of a session that starts on a symmetric sphere; symmetric strokes are compared
+// with the same stroke in a copy of the session that searches for the map.
+struct MirrorSteps {
+  sculpt::Session s;
+  test::RandomSculptor r;
+  nlohmann::json settings = {{"epsilon", 0.002}, {"min_length", 0.03}, {"max_length", 0.2}, {"features", 0}};
+  explicit MirrorSteps(unsigned seed) : r(seed) {
+    s.load(mesh::make_icosphere(4));
+    s.set_settings(settings);
+  }
+  ::testing::AssertionResult symmetric_stroke_as_searched() {
+    sculpt::BrushStroke stroke = r.stroke();
+    stroke.settings.symmetry_axis = 0;
+    sculpt::Session searching;
+    test::copy_through_saved_state(s, searching);
+    searching.set_settings(settings);
+    searching.set_mirror_tracking(false);
+    s.brush_stroke(stroke);
+    searching.brush_stroke(stroke);
+    return test::same_slots(s.mesh(), searching.mesh());
+  }
+  // Returns what it did. Undos come often enough that the mesh keeps coming back to symmetric.
+  std::string step() {
+    switch (r.pick(14)) {
+      case 0:
+      case 1:
+      case 2:
+      case 10:
+      case 11: {
+        const ::testing::AssertionResult same = symmetric_stroke_as_searched();
+        return same ? "symmetric stroke" : std::string("symmetric stroke differs: ") + same.message();
+      }
+      case 3: {
+        sculpt::BrushStroke stroke = r.stroke();
+        stroke.settings.symmetry_axis = -1;
+        s.brush_stroke(stroke);
+        return "one-sided stroke";
+      }
+      case 4:
+        test::pull(s, r.on_sphere(), 0.05 * Vec3(r.on_sphere()), 3);
+        return "grab";
+      case 5:
+      case 6:
+      case 12:
+      case 13:
+        return s.undo() ? "undo" : "nothing to undo";
+      case 7:
+        return s.redo() ? "redo" : "nothing to redo";
+      case 8:
+        settings["features"] = settings["features"] == 0 ? 45 : 0;
+        s.set_settings(settings);
+        return "features " + settings["features"].dump();
+      default: {
+        sculpt::MaskOp op;
+        op.kind = r.pick(3) == 0 ? sculpt::MaskOpKind::Clear : sculpt::MaskOpKind::Paint;
+        op.path = {r.on_sphere()};
+        op.radius = 0.2;
+        s.mask(op);
+        return op.kind == sculpt::MaskOpKind::Clear ? "mask cleared" : "mask painted";
+      }
+    }
+  }
+};
+
+TEST(SculptMirrorTracker, KeptMapIsTheSearchedOneThroughRandomSteps) {
+  int symmetric_checks = 0, asymmetric_checks = 0;
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    MirrorSteps steps(seed);
+    for (int k = 0; k < 60; ++k) {
+      const std::string what = steps.step();
+      const std::string where = "seed " + std::to_string(seed) + " step " + std::to_string(k) + " (" + what + ")";
+      ASSERT_EQ(what.find("differs"), std::string::npos) << where;
+      ASSERT_NO_THROW(steps.s.mesh().validate()) << where;
+      // Asked after some steps only, so that several changes pile up between two questions.
+      if (steps.r.pick(2) == 0) continue;
+      const ::testing::AssertionResult same = map_as_searched(steps.s, 0);
+      ASSERT_TRUE(same) << where;
+      (std::string(same.message()) == "symmetric" ? symmetric_checks : asymmetric_checks) += 1;
+    }
+  }
+  // Both answers were checked, many times.
+  EXPECT_GT(symmetric_checks, 10);
+  EXPECT_GT(asymmetric_checks, 10);
+}
+
+// An undo of a symmetric stroke, then a symmetric stroke: the map is settled on the undo's slots
+// only, and the stroke is the one a search gives. A one-sided stroke then leaves a witness: the
+// next questions settle nothing.
+TEST(SculptMirrorTracker, AnUndoSettlesItsSlotsAndAOneSidedStrokeLeavesAWitness) {
+  MirrorSteps steps(11);
+  sculpt::Session& s = steps.s;
+  ASSERT_TRUE(steps.symmetric_stroke_as_searched());
+  ASSERT_TRUE(map_as_searched(s, 0));
+  ASSERT_TRUE(s.undo());
+  ASSERT_TRUE(map_as_searched(s, 0));
+  EXPECT_GT(s.mirror_settled(), 0u);
+  EXPECT_LT(s.mirror_settled(), s.mesh().n_vertices() / 4);
+  ASSERT_TRUE(steps.symmetric_stroke_as_searched());
+
+  sculpt::BrushStroke one_sided = steps.r.stroke();
+  one_sided.settings.symmetry_axis = -1;
+  s.brush_stroke(one_sided);
+  ASSERT_EQ(s.mirror_map(0), nullptr);
+  EXPECT_LT(s.mirror_settled(), s.mesh().n_vertices() / 4);
+  ASSERT_EQ(s.mirror_map(0), nullptr);
+  EXPECT_EQ(s.mirror_settled(), 0u);  // the witness holds
+  ASSERT_TRUE(steps.symmetric_stroke_as_searched());  // one-sided on this mesh, both ways
+  ASSERT_TRUE(map_as_searched(s, 0));
+  ASSERT_TRUE(s.undo());  // the "symmetric" stroke
+  ASSERT_TRUE(s.undo());  // the one-sided one: symmetric again
+  ASSERT_TRUE(map_as_searched(s, 0));
+  ASSERT_NE(s.mirror_map(0), nullptr);
+  ASSERT_TRUE(steps.symmetric_stroke_as_searched());
+  ASSERT_TRUE(test::remesher_as_new(s));
+}
+
+}  // namespace
+}  // namespace adasculpt
