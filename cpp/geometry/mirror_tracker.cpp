@@ -1,6 +1,7 @@
 #include "geometry/mirror_tracker.h"
 
 #include "geometry/mirror_symmetry.h"
+#include "mesh/vertex_mask.h"
 
 #include <algorithm>
 
@@ -8,6 +9,8 @@ namespace adasculpt::geometry {
 
 void MirrorTracker::forget() {
   axis_ = -1;
+  mask_odd_.clear();
+  mask_odd_count_ = 0;
   index_.clear();
   map_.clear();
   clear_unknown();
@@ -73,6 +76,24 @@ void MirrorTracker::follow_with_map(const mesh::SurfaceMesh& m, const std::vecto
   all_unknown_ = false;
   witness_ = mesh::Vertex();
   map_.resize(m.vertices_size(), mesh::Vertex());
+  const mesh::VertexProperty<float> mask = mesh::find_mask(m);
+  for (size_t v = m.vertices_size(); v < mask_odd_.size(); ++v) recount_mask(m, mask, mesh::Vertex(mesh::Index(v)));
+  for (mesh::Vertex t : touched) {
+    recount_mask(m, mask, t);
+    if (t.idx < map_.size() && map_[t.idx].is_valid()) recount_mask(m, mask, map_[t.idx]);
+  }
+}
+
+void MirrorTracker::recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexProperty<float>& mask, mesh::Vertex v) {
+  if (mask_odd_.size() <= v.idx) {
+    if (v.idx >= m.vertices_size()) return;
+    mask_odd_.resize(m.vertices_size(), 0);
+  }
+  bool odd = false;
+  if (mask.is_valid() && v.idx < m.vertices_size() && !m.is_deleted(v))
+    odd = map_[v.idx].is_valid() && mask[v] != mask[map_[v.idx]];
+  mask_odd_count_ = mask_odd_count_ - mask_odd_[v.idx] + odd;
+  mask_odd_[v.idx] = odd;
 }
 
 // find_mirror_map's first test: a vertex at the far end of a lopsided extent has no vertex at its
@@ -92,6 +113,13 @@ bool MirrorTracker::find_extent_witness(const mesh::SurfaceMesh& m) {
   return true;
 }
 
+void MirrorTracker::count_mask_everywhere(const mesh::SurfaceMesh& m) {
+  mask_odd_.assign(m.vertices_size(), 0);
+  mask_odd_count_ = 0;
+  if (const mesh::VertexProperty<float> mask = mesh::find_mask(m); mask.is_valid())
+    for (mesh::Vertex v : m.vertices()) recount_mask(m, mask, v);
+}
+
 bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
   last_settled_ = 0;
   if (all_unknown_ && find_extent_witness(m)) return false;
@@ -105,6 +133,7 @@ bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
       map_.swap(image);
       map_.resize(n, mesh::Vertex());
       all_unknown_ = false;
+      count_mask_everywhere(m);
       return true;
     }
   }
@@ -147,6 +176,9 @@ bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
       if (!settle_one(v)) return false;
     for (mesh::Vertex v : m.vertices())
       if (!pairs_up(v)) return false;
+  }
+  if (all_unknown_) {
+    count_mask_everywhere(m);
   } else {
     for (mesh::Vertex v : unknown_) {
       if (v.idx >= n || m.is_deleted(v)) {
@@ -157,6 +189,8 @@ bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
     }
     for (mesh::Vertex v : unknown_)
       if (v.idx < n && !m.is_deleted(v) && !pairs_up(v)) return false;
+    const mesh::VertexProperty<float> mask = mesh::find_mask(m);
+    for (mesh::Vertex v : unknown_) recount_mask(m, mask, v);
   }
   clear_unknown();
   all_unknown_ = false;

@@ -15,6 +15,10 @@
 // entries must pair up. That is find_mirror_map's answer exactly: when every position is unique,
 // the map is the one pairing there is.
 //
+// The mask (mesh/vertex_mask.h) must be its own mirror image for a stroke to mirror: the vertices
+// whose mask differs from their image's are counted, and recounted on D when it is settled (a
+// mask change at v changes the pairs of v and its image, both in D).
+//
 // A mesh that is not symmetric keeps a certificate: a witness vertex with no vertex at its mirror
 // position. It stays valid while the witness is untouched and no vertex moves onto that position
 // (one probe per change), so each later question costs nothing.
@@ -46,6 +50,8 @@ class MirrorTracker {
   // The lent map came back not matching the mesh (the stroke lost the symmetry on the way), or did
   // not come back: every entry is unknown again (the index stays and still needs follow()).
   void forget_map();
+  // After map() gave a map: every vertex's mask value equals its image's (true without a mask).
+  bool mask_symmetric() const { return mask_odd_count_ == 0; }
   // Where map() keeps the map: a borrower swaps it back here before follow_with_map.
   std::vector<mesh::Vertex>* lent_storage() { return &map_; }
   // Tests: how many vertices the last map() call had to settle.
@@ -57,6 +63,8 @@ class MirrorTracker {
   bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) const;
   bool find_extent_witness(const mesh::SurfaceMesh& m);
   bool settle(const mesh::SurfaceMesh& m);
+  void recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexProperty<float>& mask, mesh::Vertex v);
+  void count_mask_everywhere(const mesh::SurfaceMesh& m);
   Point mirrored(Point p) const {
     p[axis_] = -p[axis_];
     return p;
@@ -74,6 +82,8 @@ class MirrorTracker {
   mesh::Vertex witness_;                  // valid: the mesh is not symmetric (see above)
   Point witness_point_{0.0};              // the witness's position when it was found
   size_t last_settled_ = 0;
+  std::vector<std::uint8_t> mask_odd_;  // per slot: 1 when live and its mask differs from its image's
+  size_t mask_odd_count_ = 0;
 };
 
 }  // namespace adasculpt::geometry

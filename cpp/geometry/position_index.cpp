@@ -12,6 +12,10 @@ std::uint64_t bits_of(double c) {
   std::memcpy(&b, &c, sizeof b);
   return b;
 }
+// A slot deleted by a change not yet followed may still be filed: it is not a vertex.
+bool live_at(const mesh::SurfaceMesh& m, std::uint32_t v, const Point& p) {
+  return same_position(m.position(mesh::Vertex(v)), p) && !m.is_deleted(mesh::Vertex(v));
+}
 }  // namespace
 
 bool same_position(const Point& a, const Point& b) {
@@ -113,8 +117,7 @@ mesh::Vertex PositionIndex::find(const mesh::SurfaceMesh& m, const Point& p) con
   const size_t mask = table_.size() - 1;
   const std::uint32_t key = std::uint32_t(position_hash(p));
   for (size_t b = key & mask; table_[b].slot != kEmpty; b = (b + 1) & mask)
-    if (table_[b].key == key && same_position(m.position(mesh::Vertex(table_[b].slot)), p))
-      return mesh::Vertex(table_[b].slot);
+    if (table_[b].key == key && live_at(m, table_[b].slot, p)) return mesh::Vertex(table_[b].slot);
   return mesh::Vertex();
 }
 
@@ -124,7 +127,7 @@ int PositionIndex::count_at(const mesh::SurfaceMesh& m, const Point& p, mesh::Ve
   const std::uint32_t key = std::uint32_t(position_hash(p));
   int count = 0;
   for (size_t b = key & mask; table_[b].slot != kEmpty; b = (b + 1) & mask) {
-    if (table_[b].key != key || !same_position(m.position(mesh::Vertex(table_[b].slot)), p)) continue;
+    if (table_[b].key != key || !live_at(m, table_[b].slot, p)) continue;
     if (count++ == 0 && first) *first = mesh::Vertex(table_[b].slot);
   }
   return count;

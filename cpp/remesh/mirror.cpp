@@ -19,13 +19,15 @@ bool Remesher::enable_mirror(int axis) {
 bool Remesher::enable_mirror(int axis, std::vector<Vertex>& known_map) {
   disable_mirror();
   if (known_map.size() != impl_->mesh.vertices_size()) return false;
-  // Between strokes every sizing is 0 (reset_slots), so the pairs already agree on it.
+  // Between strokes every sizing is 0 (reset_slots), so the pairs already agree on it; the lender
+  // vouches for the mask.
   return impl_->start_mirroring(axis, known_map, true);
 }
 
 bool Remesher::Impl::start_mirroring(int axis, std::vector<Vertex>& image, bool lent) {
-  // A mask that is not its own mirror image would stop one side of a pair and not the other.
-  if (const mesh::VertexProperty<float> mask = mesh::find_mask(mesh); mask.is_valid())
+  // A mask that is not its own mirror image would stop one side of a pair and not the other (a
+  // lender checked it: geometry::MirrorTracker::mask_symmetric).
+  if (const mesh::VertexProperty<float> mask = mesh::find_mask(mesh); mask.is_valid() && !lent)
     for (Vertex v : mesh.vertices())
       if (mask[v] != mask[image[v.idx]]) return false;
   mirror = mesh.vertex_property<Vertex>("remesh:mirror", Vertex());

@@ -114,8 +114,9 @@ class Remesher {
   // Returns false, and leaves mirroring off, when the mesh is not exactly symmetric.
   bool enable_mirror(int axis);
   // As enable_mirror(axis), with the map known (geometry::MirrorTracker: what find_mirror_map
-  // would give now, sized to the vertex slots), and the mesh between strokes (every sizing 0, as
-  // reset_slots leaves it): no search and, with features off and no mask, no pass over the mesh.
+  // would give now, sized to the vertex slots), the mask (if any) known to be its own mirror image
+  // under it, and the mesh between strokes (every sizing 0, as reset_slots leaves it): no search
+  // and, with features off, no pass over the mesh.
   // The map is borrowed: its contents are swapped in (`known_map` is left holding other contents)
   // and handed back by disable_mirror(&known_map); false (mask or feature marks not symmetric)
   // leaves it as it was.

@@ -117,6 +117,7 @@ struct Session::Impl {
   // whole at every symmetric stroke. mirror_lent: the running stroke's remesher holds its map.
   geometry::MirrorTracker mirror;
   bool mirror_lent = false;
+  bool mirror_map_whole = false;  // the stroke that ended handed the whole map back
   bool mirror_tracking = true;  // off (tests): every symmetric stroke searches, as a new session does
   // The stats shown after every stroke (quick_quality), kept from the same changes.
   mutable geometry::AngleFigures angle_figures;
@@ -258,6 +259,8 @@ struct Session::Impl {
   void commit_step() {
     move_step_touched();
     history.commit_local(mesh, step_touched);
+    follow_mirror(mirror_map_whole);
+    mirror_map_whole = false;
     journal.commit(history, mesh);
     step_touched.clear();
     step_touched.shrink_to_fit();
@@ -268,11 +271,22 @@ struct Session::Impl {
     history.reset(mesh);
     history.set_limits(kMaxUndoSteps, kMaxUndoBytes);
   }
+  // The mirror map follows the slots the last step, undo or redo changed (the history knows them
+  // all, deleted ones included); map_whole: a stroke handed back the whole map.
+  void follow_mirror(bool map_whole) {
+    const std::vector<mesh::Vertex>* changed = history.last_changed_vertices();
+    if (!changed)
+      mirror.forget();
+    else if (map_whole)
+      mirror.follow_with_map(mesh, *changed);
+    else
+      mirror.follow(mesh, *changed);
+  }
   // A symmetric stroke starts: the remesher borrows the kept map (or searches, with tracking off).
   bool start_mirror(const mesh::SurfaceMesh& m, remesh::Remesher& r, int axis) {
     if (!mirror_tracking) return r.enable_mirror(axis);
     std::vector<mesh::Vertex>* map = mirror.map(m, axis);
-    mirror_lent = map && r.enable_mirror(axis, *map);
+    mirror_lent = map && mirror.mask_symmetric() && r.enable_mirror(axis, *map);
     return mirror_lent;
   }
   // Ends a grab or a brush stroke, whichever runs.
@@ -283,17 +297,12 @@ struct Session::Impl {
       // A stroke that mirrored to its end changed the mesh only through its mirrored stamps and
       // passes: the map it borrowed comes back as the mesh's map. Anything else is followed from
       // the slots it touched.
-      const bool whole_map = remesher->disable_mirror(mirror_lent ? mirror.lent_storage() : nullptr);
+      mirror_map_whole = remesher->disable_mirror(mirror_lent ? mirror.lent_storage() : nullptr);
+      if (mirror_lent && !mirror_map_whole) mirror.forget_map();  // it came back not matching the mesh
+      mirror_lent = false;
       // The sizing the stroke or grab measured goes back to unmeasured and the marks around what
       // it moved follow the new surface: the next one starts as with a new remesher.
       move_step_touched();
-      if (whole_map) {
-        mirror.follow_with_map(mesh, step_touched);
-      } else {
-        if (mirror_lent) mirror.forget_map();  // it came back not matching the mesh
-        mirror.follow(mesh, step_touched);
-      }
-      mirror_lent = false;
       remesher->reset_slots(step_touched);
       remesher_kept = true;
       component_box.follow(mesh, step_touched);
@@ -325,7 +334,7 @@ struct Session::Impl {
       if (remesher) {
         remesher->reset_slots(touched);
       }
-      mirror.follow(mesh, touched);
+      follow_mirror(false);
       component_box.follow(mesh, touched);
       component_diagonal = 0;  // the next stroke takes the diagonal the mesh has now (component_box)
       changes.topology_changed = true;

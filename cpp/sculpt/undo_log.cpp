@@ -141,6 +141,7 @@ UndoLog::UndoLog(UndoLog&&) noexcept = default;
 UndoLog& UndoLog::operator=(UndoLog&&) noexcept = default;
 
 void UndoLog::reset(const SurfaceMesh& m) {
+  changed_known_ = false;
   shadow_ = std::make_unique<SurfaceMesh>(m);
   sync_arrays(*shadow_);
   // Room for the first strokes and the stamps of commit_local, now (with the copy) rather than in
@@ -309,6 +310,7 @@ bool UndoLog::commit_local(const SurfaceMesh& m, const std::vector<Vertex>& touc
     }
   }
   (void)any;  // a stroke that changed nothing is still a step: undo takes back "the stroke"
+  note_changed_vertices(changed[kVertex], container(S, kVertex).size(), m.vertices_size());
   step->deleted_held = S.deleted_counts();
   for (int k = 0; k < kKinds; ++k)
     copy_to_shadow(container(m, k), container(S, k), changed[k], container(S, k).size(), container(m, k).size());
@@ -321,7 +323,15 @@ bool UndoLog::commit_local(const SurfaceMesh& m, const std::vector<Vertex>& touc
   return true;
 }
 
+void UndoLog::note_changed_vertices(const std::vector<std::uint32_t>& slots, size_t appended_from, size_t appended_to) {
+  changed_vertices_.clear();
+  for (std::uint32_t i : slots) changed_vertices_.push_back(Vertex(i));
+  for (size_t i = appended_from; i < appended_to; ++i) changed_vertices_.push_back(Vertex(mesh::Index(i)));
+  changed_known_ = true;
+}
+
 void UndoLog::commit_whole(const SurfaceMesh& m) {
+  changed_known_ = false;
   auto step = std::make_unique<Step>();
   step->whole = std::move(shadow_);
   shadow_ = std::make_unique<SurfaceMesh>(m);
@@ -346,6 +356,7 @@ void UndoLog::adopt_new_arrays(const SurfaceMesh& m) {
 bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, bool* whole,
                         std::vector<mesh::Face>* faces) {
   if (s.whole) {
+    changed_known_ = false;
     std::swap(m, *s.whole);
     *shadow_ = m;
     sync_arrays(*shadow_);
@@ -407,6 +418,8 @@ bool UndoLog::swap_step(Step& s, SurfaceMesh& m, std::vector<Vertex>* touched, b
   shadow_->set_deleted_counts(m.deleted_counts());
   if (verify_) check_shadow(m);
 
+  note_changed_vertices(s.blocks[kVertex].slots, regrown[kVertex].empty() ? 0 : regrown[kVertex].front(),
+                        regrown[kVertex].empty() ? 0 : regrown[kVertex].back() + 1);
   if (faces) {
     for (int part = 0; part < 2; ++part)
       for (std::uint32_t i : part ? regrown[kFace] : s.blocks[kFace].slots) faces->push_back(mesh::Face(i));

@@ -64,6 +64,14 @@ class UndoLog {
   bool redo(mesh::SurfaceMesh& m, std::vector<mesh::Vertex>* touched, bool* whole,
             std::vector<mesh::Face>* faces = nullptr);
 
+  // The vertex slots the last commit_local, undo or redo changed in any array (positions,
+  // connectivity, deletion marks, the mask), deleted ones and the slots appended included (slots an
+  // undo cut off are past the mesh's end); nullptr after a whole-mesh step (everything changed).
+  // Unlike `touched`, it holds the vertices a step deleted: a mirror map must learn of them.
+  const std::vector<mesh::Vertex>* last_changed_vertices() const {
+    return changed_known_ ? &changed_vertices_ : nullptr;
+  }
+
   size_t undo_steps() const { return undo_.size(); }
   size_t redo_steps() const { return redo_.size(); }
   // Bounds: at most max_steps undo steps and max_bytes of them (the oldest go first; the newest
@@ -107,6 +115,7 @@ class UndoLog {
                  std::vector<mesh::Face>* faces);
   void sync_arrays(mesh::SurfaceMesh& m);
   void enforce_limits();
+  void note_changed_vertices(const std::vector<std::uint32_t>& slots, size_t appended_from, size_t appended_to);
   void check_shadow(const mesh::SurfaceMesh& m) const;
 
   std::unique_ptr<mesh::SurfaceMesh> shadow_;
@@ -119,6 +128,8 @@ class UndoLog {
   std::vector<std::uint32_t> candidates_[kKinds];
   std::vector<std::uint32_t> stamp_[kKinds];
   std::uint32_t epoch_ = 0;
+  std::vector<mesh::Vertex> changed_vertices_;
+  bool changed_known_ = false;
 };
 
 // A whole mesh as its slots (positions, connectivity, deletion marks: deleted slots and numbering

@@ -116,12 +116,19 @@ struct MirrorSteps {
         s.set_settings(settings);
         return "features " + settings["features"].dump();
       default: {
+        // Cleared, painted on one side, or painted at a point and at its mirror image (the mask
+        // stays its own mirror image and strokes keep mirroring).
+        const int kind = r.pick(3);
         sculpt::MaskOp op;
-        op.kind = r.pick(3) == 0 ? sculpt::MaskOpKind::Clear : sculpt::MaskOpKind::Paint;
+        op.kind = kind == 0 ? sculpt::MaskOpKind::Clear : sculpt::MaskOpKind::Paint;
         op.path = {r.on_sphere()};
         op.radius = 0.2;
         s.mask(op);
-        return op.kind == sculpt::MaskOpKind::Clear ? "mask cleared" : "mask painted";
+        if (kind == 2) {
+          op.path[0].x = -op.path[0].x;
+          s.mask(op);
+        }
+        return kind == 0 ? "mask cleared" : kind == 1 ? "mask painted" : "mask painted on both sides";
       }
     }
   }
@@ -177,6 +184,25 @@ TEST(SculptMirrorTracker, AnUndoSettlesItsSlotsAndAOneSidedStrokeLeavesAWitness)
   ASSERT_NE(s.mirror_map(0), nullptr);
   ASSERT_TRUE(steps.symmetric_stroke_as_searched());
   ASSERT_TRUE(test::remesher_as_new(s));
+
+  // A mask painted at a point and at its mirror image is its own mirror image: symmetric strokes
+  // keep mirroring with the kept map (the mesh stays symmetric). Painted on one side only, it
+  // stops them: the stroke runs one-sided, as with a search.
+  sculpt::MaskOp op;
+  op.kind = sculpt::MaskOpKind::Paint;
+  op.radius = 0.3;
+  op.path = {Point(glm::normalize(Vec3(0.6, 0.5, 0.3)))};
+  s.mask(op);
+  op.path[0].x = -op.path[0].x;
+  s.mask(op);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(steps.symmetric_stroke_as_searched());
+    ASSERT_TRUE(geometry::is_mirror_symmetric(s.mesh(), 0));
+  }
+  op.path = {Point(glm::normalize(Vec3(0.3, -0.5, 0.6)))};
+  s.mask(op);
+  ASSERT_NE(s.mirror_map(0), nullptr);
+  ASSERT_TRUE(steps.symmetric_stroke_as_searched());
 }
 
 }  // namespace
