@@ -12,7 +12,8 @@ namespace adasculpt::geometry {
 // invalid handle) when every vertex's position with the `axis` coordinate negated is exactly
 // another vertex's position (a vertex on the plane is its own image); otherwise, or when two
 // vertices share a position, an empty vector. Connectivity is not compared (the remesher checks
-// the image of each edge it touches): see is_mirror_symmetric.
+// the image of each edge it touches): see is_mirror_symmetric. A pass over the mesh; a session
+// keeps this answer through its changes at their cost instead (mirror_tracker.h).
 std::vector<mesh::Vertex> find_mirror_map(const mesh::SurfaceMesh& mesh, int axis);
 
 // Vertex for vertex and triangle for triangle: find_mirror_map succeeds and every triangle's

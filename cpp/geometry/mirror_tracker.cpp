@@ -62,11 +62,9 @@ void MirrorTracker::follow(const mesh::SurfaceMesh& m, const std::vector<mesh::V
     };
     for (size_t v = n; v < map_.size(); ++v) touch(mesh::Vertex(mesh::Index(v)));
     for (mesh::Vertex t : touched) touch(t);
-    if (unknown_.size() > n / 8 + 64) forget_map();
-  }
-  map_.resize(n, mesh::Vertex());
-  if (in_unknown_.size() > n) {
     for (size_t v = n; v < in_unknown_.size(); ++v) in_unknown_[v] = 0;  // listed ones are skipped when settled
+    map_.resize(n, mesh::Vertex());  // (not while nothing is known: a mesh's worth of entries to fill)
+    if (unknown_.size() > n / 8 + 64) forget_map();
   }
 }
 
@@ -85,13 +83,12 @@ void MirrorTracker::follow_with_map(const mesh::SurfaceMesh& m, const std::vecto
 }
 
 void MirrorTracker::recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexProperty<float>& mask, mesh::Vertex v) {
+  const bool odd = mask.is_valid() && v.idx < m.vertices_size() && !m.is_deleted(v) && map_[v.idx].is_valid() &&
+                   mask[v] != mask[map_[v.idx]];
   if (mask_odd_.size() <= v.idx) {
-    if (v.idx >= m.vertices_size()) return;
+    if (!odd) return;  // slots past the flags' end count as even (no mask yet, or new slots)
     mask_odd_.resize(m.vertices_size(), 0);
   }
-  bool odd = false;
-  if (mask.is_valid() && v.idx < m.vertices_size() && !m.is_deleted(v))
-    odd = map_[v.idx].is_valid() && mask[v] != mask[map_[v.idx]];
   mask_odd_count_ = mask_odd_count_ - mask_odd_[v.idx] + odd;
   mask_odd_[v.idx] = odd;
 }
@@ -99,22 +96,27 @@ void MirrorTracker::recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexP
 // find_mirror_map's first test: a vertex at the far end of a lopsided extent has no vertex at its
 // mirror position (the whole mesh is read, but nothing is hashed).
 bool MirrorTracker::find_extent_witness(const mesh::SurfaceMesh& m) {
-  mesh::Vertex lo, hi;
+  if (m.n_vertices() == 0) return false;
+  // The extent first, as find_mirror_map reads it; the vertex at the far end only when lopsided.
+  double l = m.position(*m.vertices().begin())[axis_], h = l;
   for (mesh::Vertex v : m.vertices()) {
     const double c = m.position(v)[axis_];
-    if (!lo.is_valid() || c < m.position(lo)[axis_]) lo = v;
-    if (!hi.is_valid() || c > m.position(hi)[axis_]) hi = v;
+    l = std::min(l, c);
+    h = std::max(h, c);
   }
-  if (!lo.is_valid()) return false;
-  const double l = m.position(lo)[axis_], h = m.position(hi)[axis_];
   if (l == -h) return false;
-  witness_ = h > -l ? hi : lo;
-  witness_point_ = m.position(witness_);
-  return true;
+  const double far = h > -l ? h : l;
+  for (mesh::Vertex v : m.vertices())
+    if (m.position(v)[axis_] == far) {
+      witness_ = v;
+      witness_point_ = m.position(v);
+      return true;
+    }
+  return false;
 }
 
 void MirrorTracker::count_mask_everywhere(const mesh::SurfaceMesh& m) {
-  mask_odd_.assign(m.vertices_size(), 0);
+  mask_odd_.clear();
   mask_odd_count_ = 0;
   if (const mesh::VertexProperty<float> mask = mesh::find_mask(m); mask.is_valid())
     for (mesh::Vertex v : m.vertices()) recount_mask(m, mask, v);
@@ -142,6 +144,7 @@ bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
   bool distinct = false;
   if (!index_.built() && !(distinct = index_.build(m))) return false;
   in_unknown_.resize(n, 0);
+  map_.resize(n, mesh::Vertex());
   const auto settle_one = [&](mesh::Vertex v) {
     ++last_settled_;
     const Point p = m.position(v);
@@ -204,11 +207,12 @@ std::vector<mesh::Vertex>* MirrorTracker::map(const mesh::SurfaceMesh& m, int ax
     axis_ = axis;
     forget_map();
     witness_ = mesh::Vertex();
-    map_.assign(m.vertices_size(), mesh::Vertex());
   }
-  map_.resize(m.vertices_size(), mesh::Vertex());
   if (witness_.is_valid()) return nullptr;
-  if (!all_unknown_ && unknown_.empty()) return &map_;
+  if (!all_unknown_ && unknown_.empty()) {
+    map_.resize(m.vertices_size(), mesh::Vertex());
+    return &map_;
+  }
   return settle(m) ? &map_ : nullptr;
 }
 

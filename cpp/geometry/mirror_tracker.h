@@ -44,7 +44,7 @@ class MirrorTracker {
   void follow_with_map(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched);
   // find_mirror_map(m, axis) as it would answer now: the map (indexed by vertex slot; deleted
   // slots may hold anything), or nullptr when the mesh is not exactly symmetric across that plane.
-  // The caller may swap the vector's contents out (the remesher borrows it during a stroke) and
+  // The caller may move the vector's contents out (the remesher borrows it during a stroke) and
   // back, then tell which of follow_with_map or forget_map applies.
   std::vector<mesh::Vertex>* map(const mesh::SurfaceMesh& m, int axis);
   // The lent map came back not matching the mesh (the stroke lost the symmetry on the way), or did
@@ -52,7 +52,7 @@ class MirrorTracker {
   void forget_map();
   // After map() gave a map: every vertex's mask value equals its image's (true without a mask).
   bool mask_symmetric() const { return mask_odd_count_ == 0; }
-  // Where map() keeps the map: a borrower swaps it back here before follow_with_map.
+  // Where map() keeps the map: a borrower moves it back here before follow_with_map.
   std::vector<mesh::Vertex>* lent_storage() { return &map_; }
   // Tests: how many vertices the last map() call had to settle.
   size_t last_settled() const { return last_settled_; }

@@ -93,6 +93,20 @@ class PropertyContainer {
     arrays_.push_back(std::move(arr));
     return raw;
   }
+  // As add, with `data` (one element per slot; missing ones get the default) moved in as the
+  // array's contents instead of a fill: an algorithm lending its own per-slot array to the mesh
+  // pays nothing per slot.
+  template <class T>
+  PropertyArray<T>* adopt(const std::string& name, std::vector<T>&& data, T default_value) {
+    if (find(name)) throw std::logic_error("property '" + name + "' already exists");
+    auto arr = std::make_unique<PropertyArray<T>>(name, std::move(default_value));
+    arr->vector() = std::move(data);
+    arr->reserve(capacity_);
+    arr->resize(size_);
+    auto* raw = arr.get();
+    arrays_.push_back(std::move(arr));
+    return raw;
+  }
   template <class T>
   PropertyArray<T>* get(const std::string& name) const {
     return dynamic_cast<PropertyArray<T>*>(find(name));

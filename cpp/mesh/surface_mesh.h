@@ -169,6 +169,10 @@ class SurfaceMesh {
     return VertexProperty<T>(vprops_.add<T>(name, std::move(def)));
   }
   template <class T>
+  VertexProperty<T> adopt_vertex_property(const std::string& name, std::vector<T>&& data, T def = T()) {
+    return VertexProperty<T>(vprops_.adopt<T>(name, std::move(data), std::move(def)));
+  }
+  template <class T>
   VertexProperty<T> get_vertex_property(const std::string& name) const {
     return VertexProperty<T>(vprops_.get<T>(name));
   }

@@ -30,8 +30,7 @@ bool Remesher::Impl::start_mirroring(int axis, std::vector<Vertex>& image, bool 
   if (const mesh::VertexProperty<float> mask = mesh::find_mask(mesh); mask.is_valid() && !lent)
     for (Vertex v : mesh.vertices())
       if (mask[v] != mask[image[v.idx]]) return false;
-  mirror = mesh.vertex_property<Vertex>("remesh:mirror", Vertex());
-  mirror.vector().swap(image);
+  mirror = mesh.adopt_vertex_property<Vertex>("remesh:mirror", std::move(image), Vertex());
   mirror_axis = axis;
   mirror_lent = lent;
   // Feature flags and sizes come from dihedral angles and curvature, computed per side: make the
@@ -45,7 +44,7 @@ bool Remesher::Impl::start_mirroring(int axis, std::vector<Vertex>& image, bool 
       if (!feature[e]) continue;
       const Edge img = mirror_edge(e);
       if (!img.is_valid()) {
-        if (lent) image.swap(mirror.vector());  // back to the lender, as it was
+        if (lent) image = std::move(mirror.vector());  // back to the lender, as it was
         mirror_lent = false;
         remove_mirror();
         return false;
@@ -66,7 +65,7 @@ bool Remesher::disable_mirror(std::vector<Vertex>* give_back) {
   Impl& m = *impl_;
   const bool whole = m.mirror_axis >= 0;
   const bool handed_back = give_back && m.mirror_lent && m.mirror.is_valid();
-  if (handed_back) give_back->swap(m.mirror.vector());
+  if (handed_back) *give_back = std::move(m.mirror.vector());
   m.mirror_lent = false;
   m.remove_mirror();
   return whole && handed_back;

@@ -117,9 +117,9 @@ class Remesher {
   // would give now, sized to the vertex slots), the mask (if any) known to be its own mirror image
   // under it, and the mesh between strokes (every sizing 0, as reset_slots leaves it): no search
   // and, with features off, no pass over the mesh.
-  // The map is borrowed: its contents are swapped in (`known_map` is left holding other contents)
-  // and handed back by disable_mirror(&known_map); false (mask or feature marks not symmetric)
-  // leaves it as it was.
+  // The map is borrowed: moved in (`known_map` is left empty; the mesh's mirror array is made from
+  // it, not filled) and handed back by disable_mirror(&known_map); false (feature marks not
+  // symmetric) leaves it as it was.
   bool enable_mirror(int axis, std::vector<Vertex>& known_map);
   // Mirroring ends (a stroke ends). give_back: a borrowed map goes back there, updated by the
   // passes' splits and collapses; the result says whether it is the mesh's map (the stroke
