@@ -1,9 +1,9 @@
 #include "geometry/mirror_tracker.h"
 
+#include <algorithm>
+
 #include "geometry/mirror_symmetry.h"
 #include "mesh/vertex_mask.h"
-
-#include <algorithm>
 
 namespace adasculpt::geometry {
 
