@@ -384,11 +384,12 @@ BENCHMARK(BM_StrokeAfterUndo)->Arg(1)->Arg(16)->Unit(benchmark::kMillisecond)->I
 // Strokes with symmetry on (the app's default: across x). A stroke's start asks the remesher to
 // mirror (Remesher::enable_mirror), which searched the whole mesh for the mirror map
 // (geometry::find_mirror_map: the extent along the axis, and on an exactly symmetric mesh a hash
-// table of every vertex) and then passed over every edge and vertex; a stroke that mirrored to its
-// end now leaves the map to the next one. Scenes (range 0): 1 and 16 bunny copies (not symmetric:
-// the extent test fails), and 1 and 8 pairs of a bunny and its mirror image (139k and 1.1M
-// triangles, symmetric: every stroke mirrors onto the first pair's image). The scene's 12 short
-// strokes with symmetry across x; prints the median stroke's thread CPU ms and the first stroke's.
+// table of every vertex) and then passed over every edge and vertex; the session now keeps the map
+// through every change at the change's cost (geometry::MirrorTracker) and lends it to the remesher.
+// Scenes (range 0): 1 and 16 bunny copies (not symmetric: the extent test fails), and 1 and 8
+// pairs of a bunny and its mirror image (139k and 1.1M triangles, symmetric: every stroke mirrors
+// onto the first pair's image). The scene's 12 short strokes with symmetry across x; prints the
+// median stroke's thread CPU ms and the first stroke's.
 void BM_SymmetricStrokes(benchmark::State& state) {
   const int kind = int(state.range(0));
   const mesh::SurfaceMesh m = kind < 2 ? scene(kind == 0 ? 1 : 16) : scene(kind == 2 ? 2 : 16, true);
