@@ -117,6 +117,24 @@ std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f
 void CrossingGuard::start(const SurfaceMesh& mesh) { start(mesh, kCellEdges); }
 
 void CrossingGuard::start(const SurfaceMesh& mesh, double cell_edges) {
+  cell_edges_ = cell_edges;
+  renewals_left_ = kRenewals;
+  spent_ = false;
+  build_grid(mesh);
+}
+
+bool CrossingGuard::renew_budget(const SurfaceMesh& mesh) {
+  if (renewals_left_ == 0) {
+    spent_ = true;
+    return false;
+  }
+  --renewals_left_;
+  build_grid(mesh);
+  return true;
+}
+
+void CrossingGuard::build_grid(const SurfaceMesh& mesh) {
+  const double cell_edges = cell_edges_;
   const auto* hc = mesh.halfedge_connectivity_data();
   const Point* pos = mesh.positions().data();
   double sum = 0;
@@ -168,22 +186,25 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
     shapes_[i] = {glm::min(p[0], glm::min(p[1], p[2])), glm::max(p[0], glm::max(p[1], p[2])), normal_of(p)};
     lo = glm::min(lo, shapes_[i].lo), hi = glm::max(hi, shapes_[i].hi);
   }
-  near_.clear();
   fans_after_.clear();
-  if (!grid_.gather(lo, hi, near_, work_left_)) {  // spent: from here on the operations are not checked
-    grid_.clear();
-    return crossing;
+  // Every face the gather finds costs one unit more, charged up front. A spent budget is renewed
+  // (a grid at the current mean edge: a coarsening pass outgrows the cells it started with); once
+  // the renewals are spent too, the operation is refused.
+  for (;;) {
+    if (spent_) {
+      crossing.found = true;
+      return crossing;
+    }
+    near_.clear();
+    if (grid_.gather(lo, hi, near_, work_left_) && work_left_ >= near_.size()) break;
+    renew_budget(mesh);
   }
+  work_left_ -= near_.size();
   const auto* hc = mesh.halfedge_connectivity_data();
   const mesh::Halfedge* fh = mesh.face_halfedge_data();
   const std::uint8_t* fdel = mesh.face_deleted_data();
   const Point* pos = mesh.positions().data();
   for (const Face g : near_) {
-    if (work_left_ == 0) {  // spent: from here on the operations are not checked
-      grid_.clear();
-      return crossing;
-    }
-    --work_left_;
     if (g.idx >= mesh.faces_size() || fdel[g.idx] || g == skip0 || g == skip1) continue;
     const Halfedge h0 = fh[g.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
     const std::array<std::uint32_t, 3> ids = {hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};

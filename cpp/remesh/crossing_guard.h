@@ -31,8 +31,11 @@ class CrossingGuard {
 
   // (Re)builds the grid over the mesh's faces; until stop(), the tests below are live and every
   // edit must be reported (fan_changed, flipped). Without it every test passes. The work of one
-  // grid is bounded (a fixed number of face pairs per face): once spent, the guard stops itself
-  // until the next start(), and the operations go unchecked (inputs that defeat the grid only).
+  // grid is bounded (a fixed number of face pairs per face): once spent, the grid is built again
+  // over the current faces, up to kRenewals times per start(); after that every test fails (the
+  // operations are refused) until the next start(). An unchecked operation was how most of the
+  // sweep's new crossings came about: a coarsening pass spent the grid's work within its first
+  // iteration (cylinder_locally_refined, turbine, man at uniform lengths).
   void start(const SurfaceMesh& mesh);
   void start(const SurfaceMesh& mesh, double cell_edges);  // cells as long as this many mean edges
   void stop() { grid_.clear(); }
@@ -115,6 +118,14 @@ class CrossingGuard {
   enum : std::uint8_t { kUnknown, kEmbedded, kNotShown };
   std::vector<std::uint8_t> fan_embedded_;  // undo_crossing_moves: per vertex slot, at the current positions
   size_t work_left_ = 0;  // pairs of faces the current grid may still look at (start())
+  // Renewals of the grid and its work (renew_budget) a start() allows: the work of a pass stays
+  // within a fixed multiple of the mesh's size.
+  static constexpr int kRenewals = 4;
+  int renewals_left_ = 0;
+  bool spent_ = false;  // the renewals too: every test fails until the next start()
+  double cell_edges_ = 0;  // start()'s cell size, in mean edges
+  void build_grid(const SurfaceMesh& mesh);  // at cell_edges_ x the current mean edge, with a full budget
+  bool renew_budget(const SurfaceMesh& mesh);  // build_grid, or (none left) spent_
   std::vector<Vertex> to_check_, to_undo_;
 };
 
