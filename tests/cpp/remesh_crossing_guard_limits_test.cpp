@@ -1,5 +1,7 @@
-// The crossing guard's bounded work (crossing_guard.h): a pass that spends the work of the guard's
-// grid must not go on unchecked. Coarsening a finely meshed input (cylinder_locally_refined at
+// Where the crossing guard (crossing_guard.h) let crossings through: its bounded work, and the
+// crossings it excuses as the input's.
+//
+// A pass that spends the work of the guard's grid must not go on unchecked. Coarsening a finely meshed input (cylinder_locally_refined at
 // uniform 2 %, turbine and man at uniform 8 %) spent it within the first collapse pass, and the
 // collapses after that made the sweep's new crossing pairs. The grid is renewed instead, and once
 // the renewals are spent too every operation is refused until the next start().
@@ -78,4 +80,36 @@ TEST(CrossingGuardBudget, RefusesEveryOperationOnceTheRenewalsAreSpentUntilTheNe
   guard.start(m);
   EXPECT_FALSE(guard.collapse_crosses(m, harmless, m.position(Vertex(3)), false));
   EXPECT_FALSE(guard.fan_crosses(m, Vertex(7)));
+}
+
+// A collapse whose replaced faces cross the sheet already keeps that crossing (excused), but its
+// new triangles meet the sheet's box beyond where the old faces did: the input's clean-up
+// refuses it (contain_inherited_crossings), the passes after it do not.
+TEST(CrossingGuardInherited, TheCleanUpKeepsAnInputCrossingWhereItWas) {
+  SurfaceMesh m = fan_over_a_sheet();
+  // The sheet now pierces the flat far half of the fan (z = 0) at x = -0.7, from z = 0.1 at its
+  // tip down to -0.4; the collapse's new triangles slope down to z = -0.6 and meet it below 0.
+  m.position(Vertex(7)).z = 0.1;
+  m.position(Vertex(8)).z = -0.4;
+  m.position(Vertex(9)).z = -0.4;
+  ASSERT_GT(geometry::self_intersections(m).pairs.size(), 0u);
+  const mesh::Halfedge collapse = m.find_halfedge(Vertex(0), Vertex(1));
+  remesh::CrossingGuard guard;
+  guard.start(m);
+  EXPECT_FALSE(guard.collapse_crosses(m, collapse, m.position(Vertex(1)), false));
+  guard.contain_inherited_crossings(true);
+  EXPECT_TRUE(guard.collapse_crosses(m, collapse, m.position(Vertex(1)), false));
+  guard.start(m);  // back to excusing it
+  EXPECT_FALSE(guard.collapse_crosses(m, collapse, m.position(Vertex(1)), false));
+  // The collapse really takes the crossing beyond the old faces: below the fan's plane.
+  m.collapse(collapse);
+  bool below = false;
+  const geometry::SelfIntersectionReport crossings = geometry::self_intersections(m);
+  for (const auto& pair : crossings.pairs)
+    for (const std::uint32_t f : {pair.first, pair.second}) {
+      Vertex corners[3];
+      m.face_vertices(mesh::Face(f), corners);
+      for (const Vertex v : corners) below = below || (v != Vertex(7) && m.position(v).z < 0);
+    }
+  EXPECT_TRUE(below);
 }
