@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "geometry/embedded_fan.h"
 #include "geometry/self_intersections.h"
@@ -117,6 +119,25 @@ std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f
 void CrossingGuard::start(const SurfaceMesh& mesh) { start(mesh, kCellEdges); }
 
 void CrossingGuard::start(const SurfaceMesh& mesh, double cell_edges) {
+  cell_edges_ = cell_edges;
+  contain_inherited_ = false;
+  renewals_left_ = kRenewals;
+  spent_ = false;
+  build_grid(mesh);
+}
+
+bool CrossingGuard::renew_budget(const SurfaceMesh& mesh) {
+  if (renewals_left_ == 0) {
+    spent_ = true;
+    return false;
+  }
+  --renewals_left_;
+  build_grid(mesh);
+  return true;
+}
+
+void CrossingGuard::build_grid(const SurfaceMesh& mesh) {
+  const double cell_edges = cell_edges_;
   const auto* hc = mesh.halfedge_connectivity_data();
   const Point* pos = mesh.positions().data();
   double sum = 0;
@@ -168,22 +189,25 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
     shapes_[i] = {glm::min(p[0], glm::min(p[1], p[2])), glm::max(p[0], glm::max(p[1], p[2])), normal_of(p)};
     lo = glm::min(lo, shapes_[i].lo), hi = glm::max(hi, shapes_[i].hi);
   }
-  near_.clear();
   fans_after_.clear();
-  if (!grid_.gather(lo, hi, near_, work_left_)) {  // spent: from here on the operations are not checked
-    grid_.clear();
-    return crossing;
+  // Every face the gather finds costs one unit more, charged up front. A spent budget is renewed
+  // (a grid at the current mean edge: a coarsening pass outgrows the cells it started with); once
+  // the renewals are spent too, the operation is refused.
+  for (;;) {
+    if (spent_) {
+      crossing.found = true;
+      return crossing;
+    }
+    near_.clear();
+    if (grid_.gather(lo, hi, near_, work_left_) && work_left_ >= near_.size()) break;
+    renew_budget(mesh);
   }
+  work_left_ -= near_.size();
   const auto* hc = mesh.halfedge_connectivity_data();
   const mesh::Halfedge* fh = mesh.face_halfedge_data();
   const std::uint8_t* fdel = mesh.face_deleted_data();
   const Point* pos = mesh.positions().data();
   for (const Face g : near_) {
-    if (work_left_ == 0) {  // spent: from here on the operations are not checked
-      grid_.clear();
-      return crossing;
-    }
-    --work_left_;
     if (g.idx >= mesh.faces_size() || fdel[g.idx] || g == skip0 || g == skip1) continue;
     const Halfedge h0 = fh[g.idx], h1 = hc[h0.idx].next, h2 = hc[h1.idx].next;
     const std::array<std::uint32_t, 3> ids = {hc[h0.idx].to.idx, hc[h1.idx].to.idx, hc[h2.idx].to.idx};
@@ -207,7 +231,10 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
       }
       if (surely_apart(t.p, t.ids, shapes_[i].normal, q, ids, nq) || !geometry::faces_intersect(t.p, t.ids, q, ids))
         continue;
-      if (crossed_already(mesh, g, q, ids, replaced0, replaced1, skip0, skip1)) break;
+      if (crossed_already(mesh, g, q, ids, shapes_[i].lo, shapes_[i].hi, replaced0, replaced1, skip0, skip1)) {
+        if (contain_inherited_) continue;  // the next candidate may meet g beyond the old crossing
+        break;
+      }
       if (before && crossed_before(*before, t.ids, ids)) continue;
       crossing.found = true;
       crossing.triangle = i;
@@ -218,20 +245,31 @@ CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, c
   return crossing;
 }
 
+// With contain_inherited_, the new triangle t may only meet g where a replaced face met it: t's
+// box and g's must overlap within the box over the overlaps of g's box with those of the replaced
+// faces that cross it.
 bool CrossingGuard::crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3],
-                                    const std::array<std::uint32_t, 3>& ids, Vertex replaced0, Vertex replaced1,
-                                    Face skip0, Face skip1) const {
-  auto crosses_g = [&](Face f) {
-    if (!f.is_valid() || f == g) return false;
+                                    const std::array<std::uint32_t, 3>& ids, const Point& t_lo, const Point& t_hi,
+                                    Vertex replaced0, Vertex replaced1, Face skip0, Face skip1) const {
+  const Point g_lo = glm::min(q[0], glm::min(q[1], q[2])), g_hi = glm::max(q[0], glm::max(q[1], q[2]));
+  Point met_lo(std::numeric_limits<double>::infinity()), met_hi(-std::numeric_limits<double>::infinity());
+  auto add_if_crossing_g = [&](Face f) {
+    if (!f.is_valid() || f == g) return;
+    if (!contain_inherited_ && met_lo.x <= met_hi.x) return;  // one is enough
     const std::array<std::uint32_t, 3> c = corners(mesh, f);
     const Point p[3] = {mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]};
-    return !geometry::collinear(p[0], p[1], p[2]) && geometry::faces_intersect(p, c, q, ids);
+    if (geometry::collinear(p[0], p[1], p[2]) || !geometry::faces_intersect(p, c, q, ids)) return;
+    met_lo = glm::min(met_lo, glm::max(g_lo, glm::min(p[0], glm::min(p[1], p[2]))));
+    met_hi = glm::max(met_hi, glm::min(g_hi, glm::max(p[0], glm::max(p[1], p[2]))));
   };
   for (const Vertex r : {replaced0, replaced1})
     if (r.is_valid())
-      for (Face f : mesh.faces(r))
-        if (crosses_g(f)) return true;
-  return crosses_g(skip0) || crosses_g(skip1);
+      for (Face f : mesh.faces(r)) add_if_crossing_g(f);
+  add_if_crossing_g(skip0);
+  add_if_crossing_g(skip1);
+  if (!contain_inherited_) return met_lo.x <= met_hi.x;
+  const Point meet_lo = glm::max(g_lo, t_lo), meet_hi = glm::min(g_hi, t_hi);
+  return glm::all(glm::greaterThanEqual(meet_lo, met_lo)) && glm::all(glm::lessThanEqual(meet_hi, met_hi));
 }
 
 void CrossingGuard::collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target,

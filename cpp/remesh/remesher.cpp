@@ -134,6 +134,7 @@ IterationStats Remesher::iterate() {
     m.remove_degenerate_faces();
     m.build_reference();
     m.start_crossing_guard();
+    m.crossing_guard.contain_inherited_crossings(true);
     m.tolerance_scale = Impl::kCleanupTolerance;
     m.fix_bad_faces(kDegenerateAngleDeg);
     m.crossing_guard.stop();
