@@ -109,6 +109,9 @@ size_t Remesher::Impl::flip_edges() {
     // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
     if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
+    // For valence only, no edge off the reference (fidelity.cpp). The flips for angles may make
+    // one: they are rare, and refusing them cost the dragon its 25-degree minimum at the defaults.
+    if (!flip_keeps_fidelity(Vertex(c), Vertex(d))) continue;
     const Edge image = flip_partner(e);
     if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);
