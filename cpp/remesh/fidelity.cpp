@@ -55,12 +55,28 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
   if (l2 < floor * floor) return false;
   const double quarter2 = kFidelityQuarter * kFidelityQuarter * tolerance * tolerance;
   const double middle2 = kFidelityMidpoint * kFidelityMidpoint * tolerance * tolerance;
-  // (l / 2)^2 sin^2(theta / 2) = l^2 (1 - cos theta) / 8 bounds every point's distance (against the
-  // smaller limit); without normals (a hint lost), measure.
+  // Two estimates of the largest distance, against the smaller limit; without normals (a hint
+  // lost), measure. (l / 2)^2 sin^2(theta / 2) = l^2 (1 - cos theta) / 8. And the planes of the
+  // two reference triangles: ha, hb the heights of each end over the other's plane; along the
+  // chord the distances to the planes grow linearly from 0 at its own end, and the surface of a
+  // single crease between the ends is the two half-planes, so the chord is at most the smaller
+  // of the two, whose largest value is ha hb / (ha + hb) (a smooth arc: twice its sagitta). The
+  // second keeps edges along a crease, and the gently curved parts of a CAD model, from being
+  // measured: without it the measure cost fandisk's default remesh 22 % more instructions.
   const size_t n = ref_normal.size();
   if (hint_a < n && hint_b < n) {
-    const double one_minus_cos = 1.0 - glm::dot(ref_normal[hint_a], ref_normal[hint_b]);
+    const Vec3& na = ref_normal[hint_a];
+    const Vec3& nb = ref_normal[hint_b];
+    const double one_minus_cos = 1.0 - glm::dot(na, nb);
     if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
+    const auto& pts = tree.points();
+    const auto& tris = tree.triangles();
+    const Point& on_a = pts[tris[hint_a][0]];
+    const Point& on_b = pts[tris[hint_b][0]];
+    const double ha = std::abs(glm::dot(na, b - on_a)) + std::abs(glm::dot(na, a - on_a));
+    const double hb = std::abs(glm::dot(nb, a - on_b)) + std::abs(glm::dot(nb, b - on_b));
+    const double peak = ha + hb > 0 ? ha * hb / (ha + hb) : 0.0;
+    if (peak * peak <= quarter2) return false;
   }
   // The chord's distance from a surface that turns once between its ends (a crease) peaks where
   // it passes over the crease, anywhere along it: the midpoint alone sees half the peak when the
@@ -167,6 +183,7 @@ size_t Remesher::Impl::undo_straying_moves() {
     if (fidelity_moved[v.idx] == 0) continue;  // (deleted vertices never moved)
     for (Halfedge out : mesh.halfedges(v)) {
       const Vertex w = mesh.to_vertex(out);
+      if (fidelity_moved[w.idx] != 0 && w.idx < v.idx) continue;  // seen from w
       if (segment_strays(mesh.position(v), ref_hint[v], mesh.position(w), ref_hint[w], tolerance)) {
         send_back(v);
         send_back(w);
