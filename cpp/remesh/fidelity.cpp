@@ -25,6 +25,10 @@
 
 namespace adasculpt::remesh {
 
+namespace {
+constexpr double kPlacedMinSin2 = 0.0109;  // sin^2 of 6 degrees: a split on the reference makes no sliver
+}  // namespace
+
 void Remesher::Impl::build_reference_normals() {
   const auto& pts = tree.points();
   const auto& tris = tree.triangles();
@@ -252,6 +256,8 @@ Point Remesher::Impl::place_on_reference(Edge e, const Point& mid) const {
       const double lengths = glm::length(n) * glm::length(half);
       if (!(lengths > 0) || glm::dot(n, half) < 0.5 * lengths) return mid;
     }
+    // Nor a sliver: the point on the reference may lie next to the line of another side.
+    if (std::min(min_angle_sin2(from, hit.point, c), min_angle_sin2(hit.point, to, c)) < kPlacedMinSin2) return mid;
   }
   return hit.point;
 }

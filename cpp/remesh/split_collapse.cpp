@@ -275,7 +275,8 @@ bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool 
   };
   if (check_lengths && (!lengths_ok(v0, v1) || (both_ends_move && !lengths_ok(v1, v0)))) return false;
   return normals_ok(v0, v1) && (!both_ends_move || normals_ok(v1, v0)) &&
-         collapse_stays_near_reference(h, target, both_ends_move) && collapse_keeps_fidelity(h, target, both_ends_move);
+         collapse_stays_near_reference(h, target, both_ends_move) &&
+         (!check_lengths || collapse_keeps_fidelity(h, target, both_ends_move));
 }
 
 bool Remesher::Impl::collapse_allowed(Halfedge h) const {
