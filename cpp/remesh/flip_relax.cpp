@@ -109,6 +109,7 @@ size_t Remesher::Impl::flip_edges() {
     // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
     if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
+    if (!flip_keeps_fidelity(Vertex(c), Vertex(d))) continue;  // no edge off the reference (fidelity.cpp)
     const Edge image = flip_partner(e);
     if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);
@@ -180,6 +181,7 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
     if (std::min(q1, q2) <= before) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
+    if (!flip_keeps_fidelity(Vertex(vc), Vertex(vd))) continue;  // (fidelity.cpp)
     const Edge image = flip_partner(e);
     if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);

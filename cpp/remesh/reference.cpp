@@ -291,6 +291,7 @@ void Remesher::Impl::build_reference() {
 
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
   estimate_vertex_budget();
+  build_reference_normals();
   ref_near_neck.assign(tree.points().size(), 0);
   necks.clear();
   // Incidence of the tree's triangles (it drops degenerate ones and reorders).

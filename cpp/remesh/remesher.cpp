@@ -117,6 +117,7 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   keep_fan_shapes = false;
   if (guarded) {
     project_vertices_guarded();
+    undo_straying_moves();
     undo_line_slides(relaxed_from);
   }
   undo_crossing_moves();

@@ -242,6 +242,33 @@ struct Remesher::Impl : RemeshScratch {
   Halfedge longest_side(mesh::Face f, bool* needle, Halfedge* shortest) const;
   bool repair_flip_ok(Edge e) const;
 
+  // ---- the reference decides where the surface strays from it (fidelity.cpp)
+  // An edge strays when its midpoint is farther than kFidelityMidpoint x the tolerance from the
+  // reference, or a quarter point farther than kFidelityQuarter x it. Where the sizing is right
+  // the check must not fire: an edge at the split threshold (4/3 L) of a sphere sized by the
+  // paper's formula is 4/3 epsilon off at its midpoint and 1 epsilon at its quarter points (at 1.0
+  // for both, the sphere's edges came out 20 % short). Where a chord passes over a crease, its
+  // distance from the surface peaks there, at t along it, and falls linearly to both ends: the
+  // two limits bound the peak by 1.7 tolerances wherever t is (at t = 0.41), under the target's 2.
+  static constexpr double kFidelityMidpoint = 1.4;
+  static constexpr double kFidelityQuarter = 1.05;
+  std::vector<Vec3> ref_normal;  // per tree triangle: unit normal (zero when degenerate)
+  void build_reference_normals();
+  double fidelity_tolerance() const;  // the base the limits multiply; 0 when the check is off (uniform, regions)
+  bool segment_strays(const Point& a, std::uint32_t hint_a, const Point& b, std::uint32_t hint_b,
+                      double tolerance) const;
+  bool edge_strays(Edge e, double tolerance) const;
+  bool strays_at(const Point& p, std::uint32_t hint) const;
+  size_t undo_straying_moves();  // after the guarded projection; see fidelity.cpp
+  std::vector<Point> fidelity_old;             // its scratch, per vertex slot
+  std::vector<std::uint8_t> fidelity_moved;    // 0 unmoved, 1 moved, 2 sent back
+  std::vector<Vertex> fidelity_queue;
+  bool fan_strays(Vertex v) const;  // an edge at v strays
+  bool fan_strayed_at(Vertex v, const Point& p, std::uint32_t hint) const;  // the same with v at p
+  Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
+  bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move) const;
+  bool flip_keeps_fidelity(Vertex c, Vertex d) const;  // the new edge c-d of a flip
+
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
   void gather_all_edges();
   size_t split_long_edges();
@@ -286,7 +313,8 @@ struct Remesher::Impl : RemeshScratch {
   size_t collapse_with_mirror(Halfedge h, bool midpoint);
   // Splits e at its midpoint and, while mirroring, its image at the image of that point, unless e
   // is no longer long (it was split as the image of an earlier edge); returns the splits done.
-  size_t split_with_mirror(Edge e);
+  // far_from_reference: split though not long (the fidelity check), if edge_strays still says so.
+  size_t split_with_mirror(Edge e, bool far_from_reference = false);
   size_t split_shared_triangle(Edge e, Edge image);
 
   // ---- helpers

@@ -135,7 +135,7 @@ size_t Remesher::Impl::project_vertices_guarded() {
       distance2 = std::min(distance2, glm::dot(q - old, q - old));
       folds = folds || !(glm::dot(glm::cross(a - now, b - now), glm::cross(a - old, b - old)) > 0);
     }
-    if (folds || distance2 <= limit2) continue;
+    if (folds || distance2 <= limit2 || strays_at(old, ref_hint[v])) continue;
     mesh.position(v) = old;
     ++undone;
   }

@@ -262,8 +262,9 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     ref_hint[v] = best_hint;
     sizing[v] = best_p == start ? start_sizing : best_sizing;
     if (best_p == start) return false;
-    // Better angles, but not at the price of a crossing with the surface around the fan.
-    if (crossing_guard.fan_crosses(mesh, v)) {
+    // Better angles, but not at the price of a crossing with the surface around the fan, nor of
+    // an edge off the reference (fidelity.cpp: a tip's fan turned around it cuts the tip off).
+    if (crossing_guard.fan_crosses(mesh, v) || (fan_strays(v) && !fan_strayed_at(v, start, start_hint))) {
       mesh.position(v) = start;
       ref_hint[v] = start_hint;
       sizing[v] = start_sizing;

@@ -1,0 +1,90 @@
+// Issue 17's Hausdorff target at the sharp edges of coarse polyhedra (remesh/fidelity.cpp): with
+// features off, a flat-faced input has no curvature to size its edges by, and the remeshed surface
+// must still stay within 2 epsilon of it (measured by the sampled distance stats --reference
+// uses); coarser settings still give fewer vertices.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <cstddef>
+#include <initializer_list>
+#include <vector>
+
+#include "geometry/quality.h"
+#include "geometry/self_intersections.h"
+#include "mesh/build_from_triangles.h"
+#include "mesh/primitives.h"
+#include "remesh/remesher.h"
+
+using namespace adasculpt;
+using mesh::SurfaceMesh;
+
+namespace {
+
+// A square pyramid twice as long as its base is wide: 5 vertices, 6 triangles, edges turning by
+// 63 to 117 degrees and a tip sharper than a cube's corner.
+SurfaceMesh long_pyramid() {
+  const std::vector<std::array<double, 3>> points = {
+      {-1, -0.5, -0.5}, {-1, -0.5, 0.5}, {-1, 0.5, 0.5}, {-1, 0.5, -0.5}, {1, 0, 0}};
+  const std::vector<std::array<std::uint32_t, 3>> triangles = {{1, 0, 4}, {2, 1, 4}, {3, 2, 4},
+                                                               {0, 3, 4}, {0, 1, 2}, {0, 2, 3}};
+  return mesh::build_from_triangles(points, triangles);
+}
+
+struct Remeshed {
+  SurfaceMesh mesh;
+  double hausdorff_rel;  // symmetric, over the input's diagonal
+};
+
+// Adaptive remesh with features off; epsilon and min length as fractions of the diagonal.
+Remeshed remeshed(const SurfaceMesh& input, double epsilon, double min_length) {
+  Remeshed r{input, 0};
+  remesh::RemeshOptions o = remesh::default_options_for(r.mesh);
+  const double diagonal = remesh::bounding_box_diagonal(r.mesh);
+  o.epsilon = epsilon * diagonal;
+  o.min_length = min_length * diagonal;
+  remesh::remesh(r.mesh, o);
+  r.hausdorff_rel = geometry::distance_between(r.mesh, input, 20000).hausdorff_rel;
+  return r;
+}
+
+void expect_within_twice_epsilon(const SurfaceMesh& input, std::initializer_list<double> epsilons) {
+  for (const double epsilon : epsilons) {
+    SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
+    const Remeshed r = remeshed(input, epsilon, 0.0002);
+    EXPECT_LE(r.hausdorff_rel, 2 * epsilon);
+    EXPECT_NO_THROW(r.mesh.validate());
+    EXPECT_EQ(geometry::self_intersections(r.mesh, 1000).pairs.size(), 0u);
+  }
+}
+
+// The sweep's fine settings: epsilon 0.01 % and 0.05 % with min length 0.02 %, features off.
+// Before the fidelity check: 0.89 % and 0.66 % of the diagonal (the long edges cut by edges of
+// the max length).
+TEST(RemeshFidelity, CoarsePyramidStaysWithinTwiceEpsilon) {
+  expect_within_twice_epsilon(long_pyramid(), {0.0001, 0.0005});
+}
+
+// Before: 0.55 % of the diagonal at epsilon 0.01 % (edges turning by 42 degrees, below the crease
+// test of the guarded projection, slid off by the relaxation). At 0.05 % the icosahedron's own
+// corners, blunter than a cube's and so not kept as tips (tips.cpp), are cut by 1.03 x 2 epsilon.
+TEST(RemeshFidelity, IcosahedronStaysWithinTwiceEpsilon) {
+  expect_within_twice_epsilon(mesh::make_icosphere(0), {0.0001});
+}
+
+// The fidelity splits grow with a finer tolerance, never with a coarser one. Within the sweep's
+// slack (scripts/sweep_remesh.py: 1 % + 5 vertices): where the max length decides, as on most of
+// the pyramid, the count moves by a few vertices either way.
+TEST(RemeshFidelity, CoarserEpsilonGivesNoMoreVertices) {
+  for (const SurfaceMesh& input : {long_pyramid(), mesh::make_icosphere(0)}) {
+    double finer = 1e300;
+    for (const double epsilon : {0.0001, 0.0005, 0.002, 0.01}) {
+      SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
+      const double n = double(remeshed(input, epsilon, 0.0002).mesh.n_vertices());
+      EXPECT_LE(n, 1.01 * finer + 5);
+      finer = n;
+    }
+  }
+}
+
+}  // namespace
