@@ -34,10 +34,25 @@ class CrossingGuard {
   // grid is bounded (a fixed number of face pairs per face): once spent, the guard stops itself
   // until the next start(), and the operations go unchecked (inputs that defeat the grid only).
   void start(const SurfaceMesh& mesh);
-  void start(const SurfaceMesh& mesh, double cell_edges);  // cells as long as this many mean edges
-  void stop() { grid_.clear(); }
-  bool active() const { return grid_.built(); }
-  void fan_changed(const SurfaceMesh& mesh, Vertex v) { grid_.insert_fan(mesh, v); }  // after a move, split or collapse at v
+  void stop() {
+    grid_.clear();
+    active_ = false;
+  }
+  // Between the passes of a batch remesh: the tests pass and edits go unreported, but the grid is
+  // kept for resume(), which is only right when nothing edited the mesh in between (a build costs
+  // as much as the guard's tests of a whole collapse pass: two per iteration were a sixth of a
+  // bunny remesh). A garbage collection in between is allowed: it renumbers the faces only when
+  // it drops some, which resume() sees by the face slots and answers with a new grid, as it does
+  // when none is kept.
+  void suspend(const SurfaceMesh& mesh) {
+    active_ = false;
+    kept_face_slots_ = mesh.faces_size();
+  }
+  void resume(const SurfaceMesh& mesh);
+  bool active() const { return active_ && grid_.built(); }
+  void fan_changed(const SurfaceMesh& mesh, Vertex v) {  // after a move, split or collapse at v
+    if (active_) grid_.insert_fan(mesh, v);
+  }
   void flipped(const SurfaceMesh& mesh, Edge e);
 
   // Whether collapsing h (from_vertex into to_vertex, the survivor at `target`; both ends move
@@ -56,7 +71,7 @@ class CrossingGuard {
   // go back to before[v] (per vertex slot; unmoved vertices equal it), until there is none. Every vertex goes
   // back at most once, and if the mesh at `before` had no crossing the result has none (but for
   // crossings between faces that did not move, which the moves did not make). Rebuilds the
-  // grid. Returns the vertices sent back.
+  // grid and leaves the guard active. Returns the vertices sent back.
   size_t undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before);
 
  private:
@@ -98,7 +113,12 @@ class CrossingGuard {
   bool share_an_embedded_fan(const SurfaceMesh& mesh, const std::array<std::uint32_t, 3>& a,
                              const std::array<std::uint32_t, 3>& b);
 
+  // Builds the grid (cells as long as a few mean edges) with a fresh work budget.
+  void build_grid(const SurfaceMesh& mesh);
+
   geometry::FaceGrid grid_;
+  bool active_ = false;
+  size_t kept_face_slots_ = 0;  // suspend()
   // Scratch, reused: no allocation once warmed up.
   std::vector<Candidate> candidates_;
   struct Shape {  // first_crossing: a candidate's box and normal (cross(p1 - p0, p2 - p0))

@@ -105,6 +105,8 @@ void Remesher::reserve_scratch() {
 
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;
+  // A kept grid must follow the splits (they report their fans; nothing checks them).
+  if (keep_guard_grid) start_crossing_guard();
   stats.splits = split_long_edges();
   start_crossing_guard();  // whole-mesh iterations: from here on no operation may cross the surface
   stats.collapses = collapse_short_edges();
@@ -136,7 +138,7 @@ IterationStats Remesher::iterate() {
     m.start_crossing_guard();
     m.tolerance_scale = Impl::kCleanupTolerance;
     m.fix_bad_faces(kDegenerateAngleDeg);
-    m.crossing_guard.stop();
+    m.end_crossing_guard();
     m.tolerance_scale = 1.0;
   }
   m.enter_whole_mesh();  // (again after removing degenerate faces, which deletes vertices)
@@ -148,7 +150,7 @@ IterationStats Remesher::iterate() {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  m.crossing_guard.stop();
+  m.end_crossing_guard();
   m.leave_whole_mesh();
   return stats;
 }
@@ -268,6 +270,8 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
   return stats;
 }
 
+void Remesher::keep_guard_grid() { impl_->keep_guard_grid = true; }
+
 bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0 && !impl_->sizing_spread; }
 
 size_t Remesher::polish() {
@@ -284,6 +288,7 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
   RemeshReport report;
   {
     Remesher remesher(mesh, options);
+    remesher.keep_guard_grid();  // nothing else edits the mesh here (but the compaction, allowed)
     for (int i = 0; i < options.iterations; ++i) {
       remesher.iterate();
       // Collapses only mark elements deleted and splits append new ones, so without compaction
