@@ -139,8 +139,9 @@ class Remesher {
   void reserve_scratch();
   // Batch use (remesh()): the caller promises that between this remesher's calls nothing edits
   // the mesh but a garbage collection. The crossing guard's grid then lives from one iterate() to
-  // the next (and into polish()) instead of being built twice per iteration. Not for sessions: a
-  // stroke's edits would leave the grid out of date.
+  // the next (and into polish()) instead of being built twice per iteration (but after a split
+  // pass that refines wholesale, see run_iteration). Not for sessions: a stroke's edits would
+  // leave the grid out of date.
   void keep_guard_grid();
   // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
