@@ -15,12 +15,11 @@ namespace adasculpt::remesh {
 
 namespace {
 // Cells as long as this many mean edges: a face's box covers one or two cells along each axis,
-// an operation's new triangles a few. Measured on dragon.off at the default settings: 1.5 or 2
-// mean edges cost 10-15 % more time (more cells per query, more entries per face), 4 about as much.
-constexpr double kCellEdges = 3.0;
-// The cells of undo_crossing_moves' sweep over all pairs in a cell, whose cost grows with the
-// faces per cell.
-constexpr double kSweepCellEdges = 2.0;
+// an operation's new triangles a few. One size serves the operations' queries and
+// undo_crossing_moves' sweep over all pairs in a cell (whose cost grows with the faces per cell),
+// so that one grid serves both: on bunny.off at the defaults, 2 or 3 for both cost within 1 % of
+// 3 for the queries and 2 for the sweep (callgrind), and the outputs were the same.
+constexpr double kCellEdges = 2.0;
 // The work one grid allows (cells, entries and pairs of faces looked at), per face and in all: bounded work on
 // inputs that defeat the grid (cgal/degtri_sliding: fans of thousands of needles in a few cells
 // ran 30 s and more). The dragon at the defaults looks at about 30 pairs per face per grid.
@@ -116,14 +115,23 @@ std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f
 }
 }  // namespace
 
-void CrossingGuard::start(const SurfaceMesh& mesh) { start(mesh, kCellEdges); }
+void CrossingGuard::start(const SurfaceMesh& mesh) {
+  active_ = true;
+  reset_budget();
+  build_grid(mesh);
+}
 
-void CrossingGuard::start(const SurfaceMesh& mesh, double cell_edges) {
-  cell_edges_ = cell_edges;
+void CrossingGuard::resume(const SurfaceMesh& mesh) {
+  if (!grid_.built() || (!active_ && mesh.faces_size() != kept_face_slots_)) return start(mesh);
+  active_ = true;
+  reset_budget();
+  work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
+}
+
+void CrossingGuard::reset_budget() {
   contain_inherited_ = false;
   renewals_left_ = kRenewals;
   spent_ = false;
-  build_grid(mesh);
 }
 
 bool CrossingGuard::renew_budget(const SurfaceMesh& mesh) {
@@ -137,7 +145,6 @@ bool CrossingGuard::renew_budget(const SurfaceMesh& mesh) {
 }
 
 void CrossingGuard::build_grid(const SurfaceMesh& mesh) {
-  const double cell_edges = cell_edges_;
   const auto* hc = mesh.halfedge_connectivity_data();
   const Point* pos = mesh.positions().data();
   double sum = 0;
@@ -149,12 +156,12 @@ void CrossingGuard::build_grid(const SurfaceMesh& mesh) {
   if (n == 0) return;
   // The mean edge: where the collapses that follow make faces larger, the cells grow with them
   // (FaceGrid::insert). Cells of the target length would hold hundreds of a fine input's faces.
-  grid_.build(mesh, cell_edges * sum / static_cast<double>(n));
+  grid_.build(mesh, kCellEdges * sum / static_cast<double>(n));
   work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
 }
 
 void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
-  if (!grid_.built()) return;
+  if (!active()) return;
   grid_.insert(mesh, mesh.face(mesh.halfedge(e, 0)));
   grid_.insert(mesh, mesh.face(mesh.halfedge(e, 1)));
 }
@@ -296,7 +303,7 @@ bool CrossingGuard::fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedg
 }
 
 bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move) {
-  if (!grid_.built()) return false;
+  if (!active()) return false;
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   collapse_candidates(mesh, h, target, both_ends_move);
   if (first_crossing(mesh, candidates_.data(), candidates_.size(), v0, both_ends_move ? v1 : Vertex(), Face(),
@@ -316,7 +323,7 @@ bool CrossingGuard::collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const 
 }
 
 bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
-  if (!grid_.built()) return false;
+  if (!active()) return false;
   const Halfedge h = mesh.halfedge(e, 0), o = mesh.halfedge(e, 1);
   const Vertex a = mesh.to_vertex(o), b = mesh.to_vertex(h);
   const Vertex c = mesh.to_vertex(mesh.next(h)), d = mesh.to_vertex(mesh.next(o));
@@ -329,7 +336,7 @@ bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
 CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Vertex v,
                                                     const std::vector<Point>* before) {
   candidates_.clear();
-  if (!grid_.built()) return {};
+  if (!active()) return {};
   for (Face f : mesh.faces(v)) {
     const std::array<std::uint32_t, 3> c = corners(mesh, f);
     candidates_.push_back({{mesh.positions()[c[0]], mesh.positions()[c[1]], mesh.positions()[c[2]]}, c, f});
@@ -379,7 +386,7 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
   }
   if (!any) return 0;
   fan_embedded_.assign(mesh.vertices_size(), kUnknown);
-  start(mesh, kSweepCellEdges);
+  start(mesh);
   auto undo_corners = [&](const std::array<std::uint32_t, 3>& c) {
     for (std::uint32_t w : c)
       if (moved(w)) to_undo_.push_back(Vertex(w));

@@ -32,15 +32,30 @@ class CrossingGuard {
   // (Re)builds the grid over the mesh's faces; until stop(), the tests below are live and every
   // edit must be reported (fan_changed, flipped). Without it every test passes. The work of one
   // grid is bounded (a fixed number of face pairs per face): once spent, the grid is built again
-  // over the current faces, up to kRenewals times per start(); after that every test fails (the
-  // operations are refused) until the next start(). An unchecked operation was how most of the
+  // over the current faces, up to kRenewals times per start() or resume(); after that every test fails (the
+  // operations are refused) until the next start() or resume(). An unchecked operation was how most of the
   // sweep's new crossings came about: a coarsening pass spent the grid's work within its first
   // iteration (cylinder_locally_refined, turbine, man at uniform lengths).
   void start(const SurfaceMesh& mesh);
-  void start(const SurfaceMesh& mesh, double cell_edges);  // cells as long as this many mean edges
-  void stop() { grid_.clear(); }
-  bool active() const { return grid_.built(); }
-  void fan_changed(const SurfaceMesh& mesh, Vertex v) { grid_.insert_fan(mesh, v); }  // after a move, split or collapse at v
+  void stop() {
+    grid_.clear();
+    active_ = false;
+  }
+  // Between the passes of a batch remesh: the tests pass and edits go unreported, but the grid is
+  // kept for resume(), which is only right when nothing edited the mesh in between (a build costs
+  // as much as the guard's tests of a whole collapse pass: two per iteration were a sixth of a
+  // bunny remesh). A garbage collection in between is allowed: it renumbers the faces only when
+  // it drops some, which resume() sees by the face slots and answers with a new grid, as it does
+  // when none is kept.
+  void suspend(const SurfaceMesh& mesh) {
+    active_ = false;
+    kept_face_slots_ = mesh.faces_size();
+  }
+  void resume(const SurfaceMesh& mesh);
+  bool active() const { return active_ && grid_.built(); }
+  void fan_changed(const SurfaceMesh& mesh, Vertex v) {  // after a move, split or collapse at v
+    if (active_) grid_.insert_fan(mesh, v);
+  }
   void flipped(const SurfaceMesh& mesh, Edge e);
 
   // Whether collapsing h (from_vertex into to_vertex, the survivor at `target`; both ends move
@@ -67,7 +82,7 @@ class CrossingGuard {
   // go back to before[v] (per vertex slot; unmoved vertices equal it), until there is none. Every vertex goes
   // back at most once, and if the mesh at `before` had no crossing the result has none (but for
   // crossings between faces that did not move, which the moves did not make). Rebuilds the
-  // grid. Returns the vertices sent back.
+  // grid and leaves the guard active. Returns the vertices sent back.
   size_t undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before);
 
  private:
@@ -112,7 +127,12 @@ class CrossingGuard {
   bool share_an_embedded_fan(const SurfaceMesh& mesh, const std::array<std::uint32_t, 3>& a,
                              const std::array<std::uint32_t, 3>& b);
 
+  // Builds the grid (cells as long as a few mean edges) with a fresh work budget.
+  void build_grid(const SurfaceMesh& mesh);
+
   geometry::FaceGrid grid_;
+  bool active_ = false;
+  size_t kept_face_slots_ = 0;  // suspend()
   // Scratch, reused: no allocation once warmed up.
   std::vector<Candidate> candidates_;
   struct Shape {  // first_crossing: a candidate's box and normal (cross(p1 - p0, p2 - p0))
@@ -133,10 +153,9 @@ class CrossingGuard {
   // within a fixed multiple of the mesh's size.
   static constexpr int kRenewals = 4;
   int renewals_left_ = 0;
-  bool spent_ = false;
-  bool contain_inherited_ = false;  // contain_inherited_crossings  // the renewals too: every test fails until the next start()
-  double cell_edges_ = 0;  // start()'s cell size, in mean edges
-  void build_grid(const SurfaceMesh& mesh);  // at cell_edges_ x the current mean edge, with a full budget
+  bool spent_ = false;              // the renewals too: every test fails until the next start() or resume()
+  bool contain_inherited_ = false;  // contain_inherited_crossings
+  void reset_budget();              // start() and resume(): renewals, spent_, contain_inherited_
   bool renew_budget(const SurfaceMesh& mesh);  // build_grid, or (none left) spent_
   std::vector<Vertex> to_check_, to_undo_;
 };

@@ -142,6 +142,12 @@ class Remesher {
   // stroke on 1.1M triangles tens of milliseconds of allocation and page faults (issue 18). A
   // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch).
   void reserve_scratch();
+  // Batch use (remesh()): the caller promises that between this remesher's calls nothing edits
+  // the mesh but a garbage collection. The crossing guard's grid then lives from one iterate() to
+  // the next (and into polish()) instead of being built twice per iteration (but after a split
+  // pass that refines wholesale, see run_iteration). Not for sessions: a stroke's edits would
+  // leave the grid out of date.
+  void keep_guard_grid();
   // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
   const RemeshOptions& options() const;

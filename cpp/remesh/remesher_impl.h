@@ -403,7 +403,19 @@ struct Remesher::Impl : RemeshScratch {
   mutable CrossingGuard crossing_guard;  // (its tests keep scratch)
   std::vector<Point> before_move;        // per vertex slot: relaxed_from, for undo_crossing_moves
   void start_crossing_guard() {
-    if (whole_mesh) crossing_guard.start(mesh);
+    if (whole_mesh) crossing_guard.resume(mesh);
+  }
+  // Batch use (Remesher::keep_guard_grid): the grid lives from one call to the next, suspended,
+  // unless the next whole-mesh split pass is expected to split more than one edge per this many
+  // faces (expected_splits: the last pass's count, unknown before the first; see run_iteration).
+  bool keep_guard_grid = false;
+  static constexpr size_t kSplitsPerFaceToRebuild = 8;
+  size_t expected_splits = SIZE_MAX;
+  void end_crossing_guard() {
+    if (keep_guard_grid)
+      crossing_guard.suspend(mesh);
+    else
+      crossing_guard.stop();
   }
   bool collapse_crosses(Halfedge h, const Point& target, bool both_ends_move) const {
     return crossing_guard.collapse_crosses(mesh, h, target, both_ends_move);

@@ -17,8 +17,10 @@
 #include "geometry/embedded_fan.h"
 #include "geometry/face_grid.h"
 #include "geometry/self_intersections.h"
+#include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/crossing_guard.h"
+#include "remesh/remesher.h"
 
 using namespace adasculpt;
 using mesh::Face;
@@ -141,6 +143,101 @@ TEST(CrossingGuard, TestsNothingWhenStopped) {
   EXPECT_TRUE(guard.active());
   guard.stop();
   EXPECT_FALSE(guard.flip_crosses(m, m.edge(halfedge_between(m, 0, 1))));
+}
+
+// A batch remesh keeps the grid between its passes (suspend, resume): while suspended the guard
+// tests nothing, and once resumed it must see the edits reported since, here a sheet moved in
+// under the ridge and then split (new face slots the kept grid never held).
+TEST(CrossingGuard, ResumedGridSeesTheEditsReportedSinceItWasKept) {
+  SurfaceMesh m = roof(true);
+  const mesh::Edge ridge = m.edge(halfedge_between(m, 0, 1));
+  std::vector<Point> under(m.positions().begin() + 4, m.positions().end());
+  for (std::uint32_t v = 4; v < 7; ++v) m.position(Vertex(v)).z += 10;  // the sheet far above at first
+  remesh::CrossingGuard guard;
+  guard.start(m);
+  EXPECT_FALSE(guard.flip_crosses(m, ridge));
+  guard.suspend(m);
+  EXPECT_FALSE(guard.active());
+  guard.resume(m);
+  EXPECT_TRUE(guard.active());
+  for (std::uint32_t v = 4; v < 7; ++v) {
+    m.position(Vertex(v)) = under[v - 4];
+    guard.fan_changed(m, Vertex(v));
+  }
+  const Vertex mid = m.split(m.edge(halfedge_between(m, 5, 6)), 0.5 * (m.position(Vertex(5)) + m.position(Vertex(6))));
+  guard.fan_changed(m, mid);
+  EXPECT_TRUE(guard.flip_crosses(m, ridge));
+  guard.suspend(m);
+  EXPECT_FALSE(guard.flip_crosses(m, ridge));  // suspended: no test
+  m.flip(ridge);
+  ASSERT_GT(crossings(m), 0u);  // the refusal was for a real crossing
+  // resume() without a kept grid builds one.
+  guard.stop();
+  guard.resume(m);
+  EXPECT_TRUE(guard.active());
+}
+
+// A garbage collection while the grid is kept renumbers the faces: the resumed guard must find
+// the sheet under the ridge at its new face slot. (The roof's faces come first, then a fan far
+// away that loses two faces to a collapse, then the sheet, which moves down two slots: where no
+// stale entry near the ridge names it.)
+TEST(CrossingGuard, ResumedGridFollowsAGarbageCollection) {
+  const SurfaceMesh r = roof(true);
+  Points p;
+  for (const Point& q : r.positions()) p.push_back({q.x, q.y, q.z});
+  Triangles t = {{0, 1, 2}, {1, 0, 3}};
+  const std::uint32_t centre = static_cast<std::uint32_t>(p.size());
+  p.push_back({100, 0, 0});
+  for (int k = 0; k < 6; ++k) p.push_back({100 + std::cos(k * kPi / 3), std::sin(k * kPi / 3), 0});
+  for (std::uint32_t k = 0; k < 6; ++k) t.push_back({centre, centre + 1 + k, centre + 1 + (k + 1) % 6});
+  t.push_back({4, 5, 6});
+  SurfaceMesh m = mesh::build_from_triangles(p, t);
+  remesh::CrossingGuard guard;
+  guard.start(m);
+  const mesh::Halfedge centre_out = halfedge_between(m, centre, centre + 1);
+  ASSERT_TRUE(m.is_collapse_ok(centre_out));
+  m.collapse(centre_out);
+  guard.fan_changed(m, Vertex(centre + 1));
+  guard.suspend(m);
+  m.garbage_collection();
+  ASSERT_EQ(m.n_faces(), 7u);
+  guard.resume(m);
+  EXPECT_TRUE(guard.flip_crosses(m, m.edge(halfedge_between(m, 0, 1))));
+}
+
+// remesh() keeps one grid through its iterations (Remesher::keep_guard_grid); a remesher that
+// builds the grid afresh for each pass, as a session's does, must reach the very same mesh: the
+// guard's answers depend on the geometry only. Coarse uniform lengths on fandisk make the
+// collapses pile up deleted slots, so remesh() compacts the mesh between its iterations.
+TEST(CrossingGuard, KeptGridRemeshesAsAFreshGridDoes) {
+  const SurfaceMesh input = io::load_mesh(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/fandisk.off");
+  const double diagonal = remesh::bounding_box_diagonal(input);
+  for (const double length : {0.0, 0.04}) {
+    SCOPED_TRACE(length > 0 ? "uniform 4 %" : "defaults");
+    remesh::RemeshOptions o = remesh::default_options_for(input);
+    if (length > 0) o.adaptive = false, o.target_length = length * diagonal;
+    SurfaceMesh kept = input, fresh = input;
+    remesh::remesh(kept, o);
+    bool compacted = false;
+    {
+      remesh::Remesher remesher(fresh, o);
+      for (int i = 0; i < o.iterations; ++i) {
+        remesher.iterate();
+        if (fresh.faces_size() > 2 * fresh.n_faces()) fresh.garbage_collection(), compacted = true;
+      }
+      remesher.polish();
+    }
+    fresh.garbage_collection();
+    EXPECT_EQ(compacted, length > 0);
+    ASSERT_EQ(kept.n_faces(), fresh.n_faces());
+    EXPECT_EQ(kept.positions(), fresh.positions());
+    for (Face f : kept.faces()) {
+      Vertex a[3], b[3];
+      kept.face_vertices(f, a);
+      fresh.face_vertices(f, b);
+      ASSERT_TRUE(std::equal(a, a + 3, b)) << f.idx;
+    }
+  }
 }
 
 // The grid finds a face at its new place after an insert (its entry at the old place is stale
