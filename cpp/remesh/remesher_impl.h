@@ -265,6 +265,7 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<Vertex> fidelity_queue;
   bool fan_strays(Vertex v) const;  // an edge at v strays
   bool fan_strayed_at(Vertex v, const Point& p, std::uint32_t hint) const;  // the same with v at p
+  void split_placed_on_reference(Edge e, const Point& mid);  // a fidelity split, checked
   Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
   bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move) const;
   bool flip_keeps_fidelity(Vertex c, Vertex d) const;  // the new edge c-d of a flip

@@ -4,7 +4,9 @@
 // uses); coarser settings still give fewer vertices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstddef>
 #include <initializer_list>
@@ -15,6 +17,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "test_build.h"
 
 using namespace adasculpt;
 using mesh::SurfaceMesh;
@@ -84,6 +87,41 @@ TEST(RemeshFidelity, CoarserEpsilonGivesNoMoreVertices) {
       EXPECT_LE(n, 1.01 * finer + 5);
       finer = n;
     }
+  }
+}
+
+// A 1 x 1 x 0.01 plate of 6 x 6 squares twisted by half a turn about its long axis: coarse edges
+// whose midpoints lie well off the curved sheets, 0.01 apart. A fidelity split used to put its
+// vertex on the reference unchecked, pushing the new fan through the other sheet: 16 crossing
+// pairs at epsilon 0.01 % (the CGAL elk, femur, diplodocus, b9_mesh and ChineseDragon-10kv at
+// epsilon 0.01-0.05 %: 12 sweep runs with 3 to 27 pairs). Now the crossing guard checks it.
+SurfaceMesh twisted_thin_plate() {
+  SurfaceMesh m = mesh::make_box(6, 6, 1, 1.0, 1.0, 0.01);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (mesh::Vertex v : m.vertices())
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], m.position(v)[k]);
+      hi[k] = std::max(hi[k], m.position(v)[k]);
+    }
+  for (mesh::Vertex v : m.vertices()) {
+    Point& p = m.position(v);
+    const double angle = M_PI * (p.x - lo[0]) / (hi[0] - lo[0]);
+    const double y = p.y - 0.5 * (lo[1] + hi[1]), z = p.z - 0.5 * (lo[2] + hi[2]);
+    p.y = y * std::cos(angle) - z * std::sin(angle);
+    p.z = y * std::sin(angle) + z * std::cos(angle);
+  }
+  return m;
+}
+
+TEST(RemeshFidelity, SplitsOnATwistedThinPlateCrossNothing) {
+  if (test::kSanitizedBuild) GTEST_SKIP() << "two remeshes to 30k vertices, minutes under ASan: the Release ctest runs it";
+  const SurfaceMesh input = twisted_thin_plate();
+  ASSERT_EQ(geometry::self_intersections(input, 1000).pairs.size(), 0u);
+  for (const double epsilon : {0.0001, 0.0005}) {
+    SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
+    const Remeshed r = remeshed(input, epsilon, 0.0002);
+    EXPECT_NO_THROW(r.mesh.validate());
+    EXPECT_EQ(geometry::self_intersections(r.mesh, 1000).pairs.size(), 0u);
   }
 }
 
