@@ -18,6 +18,16 @@ void MirrorTracker::forget() {
   witness_ = mesh::Vertex();
 }
 
+void MirrorTracker::prepare(const mesh::SurfaceMesh& m, int axis) {
+  forget();
+  if (axis < 0 || axis > 2 || m.n_vertices() == 0) return;
+  axis_ = axis;
+  if (find_extent_witness(m)) return;
+  // The index answers every later question, as after any change; positions that are not
+  // distinct leave no map (settle finds that again when asked).
+  if (index_.build(m)) settle_from_index(m, true);
+}
+
 void MirrorTracker::clear_unknown() {
   for (mesh::Vertex v : unknown_)
     if (v.idx < in_unknown_.size()) in_unknown_[v.idx] = 0;
@@ -143,6 +153,11 @@ bool MirrorTracker::settle(const mesh::SurfaceMesh& m) {
   // the pairs need no check (v's image's image is the one vertex at v's position).
   bool distinct = false;
   if (!index_.built() && !(distinct = index_.build(m))) return false;
+  return settle_from_index(m, distinct);
+}
+
+bool MirrorTracker::settle_from_index(const mesh::SurfaceMesh& m, bool distinct) {
+  const size_t n = m.vertices_size();
   in_unknown_.resize(n, 0);
   map_.resize(n, mesh::Vertex());
   const auto settle_one = [&](mesh::Vertex v) {

@@ -32,8 +32,13 @@ namespace adasculpt::geometry {
 
 class MirrorTracker {
  public:
-  // A new mesh: everything is forgotten (the next map() builds the index: one pass).
+  // Everything is forgotten (a change whose slots are not known): the next map() searches.
   void forget();
+  // A new mesh, at its load (not interactive): everything is forgotten, and when the mesh's extent
+  // along `axis` is symmetric the index is built and the whole map settled, so that the first
+  // symmetric stroke after the load takes the map as later ones do (a search there was a 63-68 ms
+  // hitch at 1.1M triangles). A lopsided extent leaves a witness and no index (most scans).
+  void prepare(const mesh::SurfaceMesh& m, int axis);
   // The mesh changed at these slots (positions, liveness, slots appended or truncated; duplicates
   // and deleted ones allowed) since the last call. Nothing to do before the first map().
   void follow(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched);
@@ -63,6 +68,8 @@ class MirrorTracker {
   bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) const;
   bool find_extent_witness(const mesh::SurfaceMesh& m);
   bool settle(const mesh::SurfaceMesh& m);
+  // settle's work once the index is built (fresh when `distinct`: its positions are distinct).
+  bool settle_from_index(const mesh::SurfaceMesh& m, bool distinct);
   void recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexProperty<float>& mask, mesh::Vertex v);
   void count_mask_everywhere(const mesh::SurfaceMesh& m);
   Point mirrored(Point p) const {
