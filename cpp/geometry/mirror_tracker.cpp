@@ -16,6 +16,7 @@ void MirrorTracker::forget() {
   clear_unknown();
   all_unknown_ = true;
   witness_ = mesh::Vertex();
+  coincident_[0] = coincident_[1] = mesh::Vertex();
 }
 
 void MirrorTracker::prepare(const mesh::SurfaceMesh& m, int axis) {
@@ -23,9 +24,10 @@ void MirrorTracker::prepare(const mesh::SurfaceMesh& m, int axis) {
   if (axis < 0 || axis > 2 || m.n_vertices() == 0) return;
   axis_ = axis;
   if (find_extent_witness(m)) return;
-  // The index answers every later question, as after any change; positions that are not
-  // distinct leave no map (settle finds that again when asked).
-  if (index_.build(m)) settle_from_index(m, true);
+  // The index answers every later question, as after any change (two vertices at one point: no
+  // map, and the pair is kept as the certificate).
+  const bool distinct = index_.build(m);
+  settle_from_index(m, distinct);
 }
 
 void MirrorTracker::clear_unknown() {
@@ -55,6 +57,15 @@ bool MirrorTracker::witness_holds(const mesh::SurfaceMesh& m, const std::vector<
   for (mesh::Vertex t : touched)
     if (t.idx < m.vertices_size() && !m.is_deleted(t) && same_position(m.position(t), q)) return false;
   return true;
+}
+
+// Whatever changed, two live vertices at one point mean no map (a slot reused since is checked
+// like any other: by its position now).
+bool MirrorTracker::coincidence_holds(const mesh::SurfaceMesh& m) const {
+  const size_t n = m.vertices_size();
+  const mesh::Vertex a = coincident_[0], b = coincident_[1];
+  return a.is_valid() && b.is_valid() && a != b && a.idx < n && b.idx < n && !m.is_deleted(a) && !m.is_deleted(b) &&
+         same_position(m.position(a), m.position(b));
 }
 
 void MirrorTracker::follow(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) {
@@ -163,14 +174,19 @@ bool MirrorTracker::settle_from_index(const mesh::SurfaceMesh& m, bool distinct)
   const auto settle_one = [&](mesh::Vertex v) {
     ++last_settled_;
     const Point p = m.position(v);
-    mesh::Vertex u;
-    const int found = index_.count_at(m, mirrored(p), &u);
+    mesh::Vertex u, u2;
+    const int found = index_.count_at(m, mirrored(p), &u, &u2);
     if (found == 0) {
       witness_ = v;
       witness_point_ = p;
+    } else if (found > 1) {
+      coincident_[0] = u, coincident_[1] = u2;
+    } else if (!all_unknown_ && !in_unknown_[u.idx]) {
+      // An image outside D has its partner outside D at v's position: two vertices at one point.
+      coincident_[0] = v, coincident_[1] = map_[u.idx];
+      return false;
     }
-    // An image outside D has its partner outside D at v's position: two vertices at one point.
-    if (found != 1 || (!all_unknown_ && !in_unknown_[u.idx])) return false;
+    if (found != 1) return false;
     map_[v.idx] = u;
     return true;
   };
@@ -223,7 +239,7 @@ std::vector<mesh::Vertex>* MirrorTracker::map(const mesh::SurfaceMesh& m, int ax
     forget_map();
     witness_ = mesh::Vertex();
   }
-  if (witness_.is_valid()) return nullptr;
+  if (witness_.is_valid() || coincidence_holds(m)) return nullptr;
   if (!all_unknown_ && unknown_.empty()) {
     map_.resize(m.vertices_size(), mesh::Vertex());
     return &map_;

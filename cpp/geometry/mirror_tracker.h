@@ -21,7 +21,8 @@
 //
 // A mesh that is not symmetric keeps a certificate: a witness vertex with no vertex at its mirror
 // position. It stays valid while the witness is untouched and no vertex moves onto that position
-// (one probe per change), so each later question costs nothing.
+// (one probe per change), so each later question costs nothing. A mesh with two vertices at one
+// point keeps the pair: while they are at one point, there is no map.
 #include <cstdint>
 #include <vector>
 
@@ -86,7 +87,11 @@ class MirrorTracker {
   bool all_unknown_ = true;
   std::vector<mesh::Vertex> unknown_;
   std::vector<std::uint8_t> in_unknown_;  // per slot: 1 when listed in unknown_
+  bool coincidence_holds(const mesh::SurfaceMesh& m) const;
   mesh::Vertex witness_;                  // valid: the mesh is not symmetric (see above)
+  // Two vertices the last settle found at one point: while they are, there is no map (and no
+  // witness either: the search's other way to fail), without settling anything again.
+  mesh::Vertex coincident_[2];
   Point witness_point_{0.0};              // the witness's position when it was found
   size_t last_settled_ = 0;
   std::vector<std::uint8_t> mask_odd_;  // per slot: 1 when live and its mask differs from its image's

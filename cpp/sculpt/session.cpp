@@ -180,6 +180,12 @@ struct Session::Impl {
     brush.deformer().grow(mesh.vertices_size());
     const size_t marks = mesh.vertices_size() * 5 / 4 + 16;  // as move_step_touched
     component_box.reset(mesh.vertices_size());
+    // The object holding the first vertex (a one-object scan: the mesh) measured here, with the
+    // mesh, rather than walked by the first stroke on it.
+    for (mesh::Vertex v : mesh.vertices()) {
+      component_box.measure(mesh, v);
+      break;
+    }
     if (step_mark.size() < marks) step_mark.resize(marks, 0u);
     // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
     // at the first stroke or press after the load, where it would be a hitch.
@@ -189,7 +195,7 @@ struct Session::Impl {
     // a search in that stroke was a 63-68 ms hitch at 1.1M triangles.
     mirror.prepare(mesh, mirror_axis_hint);
     mirror_lent = false;
-    check_mirror_features();
+    lend_mirror_map_once();
     angle_figures.invalidate();
     changes.everything = true;
     changes.topology_changed = true;
@@ -288,12 +294,14 @@ struct Session::Impl {
     else
       mirror.follow(mesh, *changed);
   }
-  // With features on, the remesher finds the feature edges whose image is no feature once, here
-  // (a new mesh, new feature settings: not a stroke), and then only around what changed: the first
-  // symmetric stroke would otherwise read every edge. Borrowing the map and giving it back changes
-  // nothing else.
-  bool check_mirror_features() {
-    if (!remesher || !(options.feature_angle_deg > 0) || !mirror_tracking) return false;
+  // The remesher borrows the map once outside a stroke (a new mesh, new feature settings), so that
+  // the first symmetric stroke finds it ready: the mesh's mirror array made from it takes room for
+  // the mesh's growth (a copy of the map, 3.3M instructions at 1.1M triangles, kept by later
+  // strokes), and with features on the remesher finds the feature edges whose image is no feature
+  // here, and then only around what changed (else the first stroke would read every edge).
+  // Borrowing the map and giving it back changes nothing else. False: no map to lend.
+  bool lend_mirror_map_once() {
+    if (!remesher || !mirror_tracking) return false;
     std::vector<mesh::Vertex>* map = mirror.map(mesh, mirror_axis_hint);
     if (!map || !mirror.mask_symmetric()) return false;
     remesher->enable_mirror(mirror_axis_hint, *map);
@@ -419,7 +427,8 @@ void Session::set_settings(const nlohmann::json& j) {
   for (int i = 0; i < 3; ++i)
     if (*given[i]) s.relative[i] = (*given[i])->percent;
   if (s.remesher) s.remesher->set_options(o);
-  if (p.features && s.has_mesh && !s.grabbing && !s.brushing && !s.masking) s.check_mirror_features();
+  if (p.features && s.options.feature_angle_deg > 0 && s.has_mesh && !s.grabbing && !s.brushing && !s.masking)
+    s.lend_mirror_map_once();
 }
 
 nlohmann::json Session::settings() const {
@@ -822,7 +831,7 @@ const std::vector<mesh::Edge>* Session::unpaired_mirror_features(int axis) {
   s.require_mesh("unpaired_mirror_features");
   s.end_grab();
   s.mirror_axis_hint = axis;
-  if (!s.check_mirror_features()) return nullptr;
+  if (!(s.options.feature_angle_deg > 0) || !s.lend_mirror_map_once()) return nullptr;
   return s.remesher->mirror_unpaired_features();
 }
 

@@ -15,6 +15,7 @@
 #include "geometry/mirror_symmetry.h"
 #include "geometry/position_index.h"
 #include "kept_remesher_test_util.h"
+#include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
 #include "sculpt/session.h"
@@ -338,6 +339,46 @@ TEST(SculptMirrorTracker, ALoadPreparesTheMapForTheFirstSymmetricStroke) {
   ASSERT_EQ(s.mirror_map(1), nullptr);
   EXPECT_EQ(s.mirror_settled(), 0u);
   ASSERT_TRUE(map_as_searched(s, 1));
+}
+
+// Two spheres at one place: every vertex shares its point with another, so there is no map. The
+// load finds a pair of them and keeps it as the certificate: no question settles anything while
+// the pair is at one point, and when a stroke moves one of them the next question finds another
+// pair (or a witness) and the one after that settles nothing again.
+TEST(SculptMirrorTracker, TwoVerticesAtOnePointAreFoundOnce) {
+  const mesh::SurfaceMesh sphere = mesh::make_icosphere(3);
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (std::uint32_t copy = 0; copy < 2; ++copy) {
+    const std::uint32_t base = std::uint32_t(points.size());
+    for (mesh::Vertex v : sphere.vertices()) {
+      const Point& p = sphere.position(v);
+      points.push_back({p.x, p.y, p.z});
+    }
+    for (mesh::Face f : sphere.faces()) {
+      mesh::Vertex c[3];
+      sphere.face_vertices(f, c);
+      triangles.push_back({base + c[0].idx, base + c[1].idx, base + c[2].idx});
+    }
+  }
+  MirrorSteps steps(41, mesh::build_from_triangles(points, triangles));
+  sculpt::Session& s = steps.s;
+  ASSERT_EQ(s.mirror_map(0), nullptr);
+  EXPECT_EQ(s.mirror_settled(), 0u);
+  ASSERT_TRUE(map_as_searched(s, 0));
+  for (int k = 0; k < 6; ++k) {
+    const std::string where = "stroke " + std::to_string(k);
+    if (k % 2) {
+      ASSERT_TRUE(steps.symmetric_stroke_as_searched()) << where;
+    } else {
+      sculpt::BrushStroke one_sided = steps.r.stroke();
+      one_sided.settings.symmetry_axis = -1;
+      s.brush_stroke(one_sided);
+    }
+    ASSERT_TRUE(map_as_searched(s, 0)) << where;
+    ASSERT_EQ(s.mirror_map(0), nullptr) << where;
+    EXPECT_EQ(s.mirror_settled(), 0u) << where;
+  }
 }
 
 // An undo of a symmetric stroke, then a symmetric stroke: the map is settled on the undo's slots
