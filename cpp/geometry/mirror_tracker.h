@@ -19,9 +19,9 @@
 // whose mask differs from their image's are counted, and recounted on D when it is settled (a
 // mask change at v changes the pairs of v and its image, both in D).
 //
-// A mesh that is not symmetric keeps a certificate: a witness vertex with no vertex at its mirror
-// position. It stays valid while the witness is untouched and no vertex moves onto that position
-// (one probe per change), so each later question costs nothing. A mesh with two vertices at one
+// A mesh that is not symmetric keeps a certificate: witness vertices with no vertex at their mirror
+// positions (up to 16, spread over the slots). One stays valid while it is untouched and no vertex
+// moves onto its mirror position, so each later question costs nothing until a change took them all. A mesh with two vertices at one
 // point keeps the pair: while they are at one point, there is no map.
 #include <cstdint>
 #include <vector>
@@ -60,13 +60,19 @@ class MirrorTracker {
   bool mask_symmetric() const { return mask_odd_count_ == 0; }
   // Where map() keeps the map: a borrower moves it back here before follow_with_map.
   std::vector<mesh::Vertex>* lent_storage() { return &map_; }
-  // Tests: how many vertices the last map() call had to settle.
+  // Tests: how many vertices the last map() call had to settle (or read for the extent).
   size_t last_settled() const { return last_settled_; }
 
  private:
   void mark_unknown(mesh::Vertex v);
   void clear_unknown();
-  bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) const;
+  struct Witness {
+    mesh::Vertex v;
+    Point p;  // its position when it was found
+  };
+  static constexpr size_t kMaxWitnesses = 16;
+  bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched, const Witness& w) const;
+  void add_witness(mesh::Vertex v, const Point& p);
   bool find_extent_witness(const mesh::SurfaceMesh& m);
   bool settle(const mesh::SurfaceMesh& m);
   // settle's work once the index is built (fresh when `distinct`: its positions are distinct).
@@ -88,11 +94,10 @@ class MirrorTracker {
   std::vector<mesh::Vertex> unknown_;
   std::vector<std::uint8_t> in_unknown_;  // per slot: 1 when listed in unknown_
   bool coincidence_holds(const mesh::SurfaceMesh& m) const;
-  mesh::Vertex witness_;                  // valid: the mesh is not symmetric (see above)
+  std::vector<Witness> witnesses_;  // any of them: the mesh is not symmetric (see above)
   // Two vertices the last settle found at one point: while they are, there is no map (and no
   // witness either: the search's other way to fail), without settling anything again.
   mesh::Vertex coincident_[2];
-  Point witness_point_{0.0};              // the witness's position when it was found
   size_t last_settled_ = 0;
   std::vector<std::uint8_t> mask_odd_;  // per slot: 1 when live and its mask differs from its image's
   size_t mask_odd_count_ = 0;

@@ -381,6 +381,26 @@ TEST(SculptMirrorTracker, TwoVerticesAtOnePointAreFoundOnce) {
   }
 }
 
+// A sphere moved off the plane (a lopsided extent): the load keeps witnesses spread over the far
+// cap, so strokes at its tip leave some of them standing and no question after them reads the mesh.
+TEST(SculptMirrorTracker, StrokesAtTheTipLeaveWitnessesStanding) {
+  mesh::SurfaceMesh shifted = mesh::make_icosphere(4);
+  for (mesh::Vertex v : shifted.vertices()) shifted.position(v).x += 0.25;
+  MirrorSteps steps(51, std::move(shifted));
+  sculpt::Session& s = steps.s;
+  ASSERT_EQ(s.mirror_map(0), nullptr);
+  EXPECT_EQ(s.mirror_settled(), 0u);
+  for (int k = 0; k < 8; ++k) {
+    sculpt::BrushStroke stroke = steps.r.stroke();
+    stroke.settings.symmetry_axis = 0;
+    stroke.settings.radius = 0.2;
+    for (Point& p : stroke.path) p = Point(1.25, 0.0, 0.0) + 0.15 * (p - Point(glm::normalize(Vec3(stroke.path[0]))));
+    s.brush_stroke(stroke);
+    ASSERT_TRUE(map_as_searched(s, 0)) << "stroke " << k;
+    EXPECT_EQ(s.mirror_settled(), 0u) << "stroke " << k;
+  }
+}
+
 // An undo of a symmetric stroke, then a symmetric stroke: the map is settled on the undo's slots
 // only, and the stroke is the one a search gives. A one-sided stroke then leaves a witness: the
 // next questions settle nothing.
