@@ -438,7 +438,7 @@ void BM_SymmetricStrokesAfterChange(benchmark::State& state) {
     sculpt::Session s;
     sculpt::RenderBuffers rb;
     open_scene(s, rb, m);
-    stroke_with_frames(s, rb, strokes[0]);  // the session's first symmetric stroke searches
+    stroke_with_frames(s, rb, strokes[0]);  // the session's first symmetric stroke (its map prepared at the load)
     if (!undo_first) {
       sculpt::BrushStroke one_sided = strokes[1];
       one_sided.settings.symmetry_axis = -1;
