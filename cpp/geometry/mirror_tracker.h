@@ -51,10 +51,11 @@ class MirrorTracker {
   // find_mirror_map(m, axis) as it would answer now: the map (indexed by vertex slot; deleted
   // slots may hold anything), or nullptr when the mesh is not exactly symmetric across that plane.
   // The caller may move the vector's contents out (the remesher borrows it during a stroke) and
-  // back, then tell which of follow_with_map or forget_map applies.
+  // back, then tell which of follow_with_map, follow or forget_map applies (follow: it came back
+  // not matching the mesh, but with the entries of every slot the change did not touch as they were).
   std::vector<mesh::Vertex>* map(const mesh::SurfaceMesh& m, int axis);
-  // The lent map came back not matching the mesh (the stroke lost the symmetry on the way), or did
-  // not come back: every entry is unknown again (the index stays and still needs follow()).
+  // The lent map did not come back (or nothing is known of its entries): every entry is unknown
+  // again (the index stays and still needs follow()).
   void forget_map();
   // After map() gave a map: every vertex's mask value equals its image's (true without a mask).
   bool mask_symmetric() const { return mask_odd_count_ == 0; }

@@ -325,7 +325,11 @@ struct Session::Impl {
       // passes: the map it borrowed comes back as the mesh's map. Anything else is followed from
       // the slots it touched.
       mirror_map_whole = remesher->disable_mirror(mirror_lent ? mirror.lent_storage() : nullptr);
-      if (mirror_lent && !mirror_map_whole) mirror.forget_map();  // it came back not matching the mesh
+      // A map that came back not matching the mesh (the stroke lost the symmetry on the way) still
+      // holds the right entries for the slots the stroke did not touch (only its own operations
+      // rewrote entries): it is followed from the touched slots like any change. One that did not
+      // come back is forgotten (the next question settles every vertex).
+      if (mirror_lent && !mirror_map_whole && mirror.lent_storage()->empty()) mirror.forget_map();
       mirror_lent = false;
       // The sizing the stroke or grab measured goes back to unmeasured and the marks around what
       // it moved follow the new surface: the next one starts as with a new remesher.

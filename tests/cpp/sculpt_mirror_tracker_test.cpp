@@ -298,6 +298,7 @@ TEST(SculptMirrorTracker, UnpairedFeaturesFollowRandomStepsAsAPassFindsThem) {
       // have no image, which run one-sided, leave none), so that most steps are compared.
       while (geometry::find_mirror_map(steps.s.mesh(), 0).empty() && steps.s.undo()) {
       }
+      ASSERT_TRUE(map_as_searched(steps.s, 0)) << where;
       if (steps.settings["features"] == 0 || geometry::find_mirror_map(steps.s.mesh(), 0).empty()) continue;
       const std::vector<mesh::Edge>* kept = steps.s.unpaired_mirror_features(0);
       if (!kept) continue;  // a mask that is not its own image
