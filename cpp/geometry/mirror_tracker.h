@@ -19,9 +19,10 @@
 // whose mask differs from their image's are counted, and recounted on D when it is settled (a
 // mask change at v changes the pairs of v and its image, both in D).
 //
-// A mesh that is not symmetric keeps a certificate: a witness vertex with no vertex at its mirror
-// position. It stays valid while the witness is untouched and no vertex moves onto that position
-// (one probe per change), so each later question costs nothing.
+// A mesh that is not symmetric keeps a certificate: witness vertices with no vertex at their mirror
+// positions (up to 16, spread over the slots). One stays valid while it is untouched and no vertex
+// moves onto its mirror position, so each later question costs nothing until a change took them all. A mesh with two vertices at one
+// point keeps the pair: while they are at one point, there is no map.
 #include <cstdint>
 #include <vector>
 
@@ -32,8 +33,13 @@ namespace adasculpt::geometry {
 
 class MirrorTracker {
  public:
-  // A new mesh: everything is forgotten (the next map() builds the index: one pass).
+  // Everything is forgotten (a change whose slots are not known): the next map() searches.
   void forget();
+  // A new mesh, at its load (not interactive): everything is forgotten, and when the mesh's extent
+  // along `axis` is symmetric the index is built and the whole map settled, so that the first
+  // symmetric stroke after the load takes the map as later ones do (a search there was a 63-68 ms
+  // hitch at 1.1M triangles). A lopsided extent leaves a witness and no index (most scans).
+  void prepare(const mesh::SurfaceMesh& m, int axis);
   // The mesh changed at these slots (positions, liveness, slots appended or truncated; duplicates
   // and deleted ones allowed) since the last call. Nothing to do before the first map().
   void follow(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched);
@@ -45,24 +51,33 @@ class MirrorTracker {
   // find_mirror_map(m, axis) as it would answer now: the map (indexed by vertex slot; deleted
   // slots may hold anything), or nullptr when the mesh is not exactly symmetric across that plane.
   // The caller may move the vector's contents out (the remesher borrows it during a stroke) and
-  // back, then tell which of follow_with_map or forget_map applies.
+  // back, then tell which of follow_with_map, follow or forget_map applies (follow: it came back
+  // not matching the mesh, but with the entries of every slot the change did not touch as they were).
   std::vector<mesh::Vertex>* map(const mesh::SurfaceMesh& m, int axis);
-  // The lent map came back not matching the mesh (the stroke lost the symmetry on the way), or did
-  // not come back: every entry is unknown again (the index stays and still needs follow()).
+  // The lent map did not come back (or nothing is known of its entries): every entry is unknown
+  // again (the index stays and still needs follow()).
   void forget_map();
   // After map() gave a map: every vertex's mask value equals its image's (true without a mask).
   bool mask_symmetric() const { return mask_odd_count_ == 0; }
   // Where map() keeps the map: a borrower moves it back here before follow_with_map.
   std::vector<mesh::Vertex>* lent_storage() { return &map_; }
-  // Tests: how many vertices the last map() call had to settle.
+  // Tests: how many vertices the last map() call had to settle (or read for the extent).
   size_t last_settled() const { return last_settled_; }
 
  private:
   void mark_unknown(mesh::Vertex v);
   void clear_unknown();
-  bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched) const;
+  struct Witness {
+    mesh::Vertex v;
+    Point p;  // its position when it was found
+  };
+  static constexpr size_t kMaxWitnesses = 16;
+  bool witness_holds(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& touched, const Witness& w) const;
+  void add_witness(mesh::Vertex v, const Point& p);
   bool find_extent_witness(const mesh::SurfaceMesh& m);
   bool settle(const mesh::SurfaceMesh& m);
+  // settle's work once the index is built (fresh when `distinct`: its positions are distinct).
+  bool settle_from_index(const mesh::SurfaceMesh& m, bool distinct);
   void recount_mask(const mesh::SurfaceMesh& m, const mesh::VertexProperty<float>& mask, mesh::Vertex v);
   void count_mask_everywhere(const mesh::SurfaceMesh& m);
   Point mirrored(Point p) const {
@@ -79,8 +94,11 @@ class MirrorTracker {
   bool all_unknown_ = true;
   std::vector<mesh::Vertex> unknown_;
   std::vector<std::uint8_t> in_unknown_;  // per slot: 1 when listed in unknown_
-  mesh::Vertex witness_;                  // valid: the mesh is not symmetric (see above)
-  Point witness_point_{0.0};              // the witness's position when it was found
+  bool coincidence_holds(const mesh::SurfaceMesh& m) const;
+  std::vector<Witness> witnesses_;  // any of them: the mesh is not symmetric (see above)
+  // Two vertices the last settle found at one point: while they are, there is no map (and no
+  // witness either: the search's other way to fail), without settling anything again.
+  mesh::Vertex coincident_[2];
   size_t last_settled_ = 0;
   std::vector<std::uint8_t> mask_odd_;  // per slot: 1 when live and its mask differs from its image's
   size_t mask_odd_count_ = 0;

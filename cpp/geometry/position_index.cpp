@@ -121,14 +121,17 @@ mesh::Vertex PositionIndex::find(const mesh::SurfaceMesh& m, const Point& p) con
   return mesh::Vertex();
 }
 
-int PositionIndex::count_at(const mesh::SurfaceMesh& m, const Point& p, mesh::Vertex* first) const {
+int PositionIndex::count_at(const mesh::SurfaceMesh& m, const Point& p, mesh::Vertex* first,
+                            mesh::Vertex* second) const {
   if (table_.empty()) return 0;
   const size_t mask = table_.size() - 1;
   const std::uint32_t key = std::uint32_t(position_hash(p));
   int count = 0;
   for (size_t b = key & mask; table_[b].slot != kEmpty; b = (b + 1) & mask) {
     if (table_[b].key != key || !live_at(m, table_[b].slot, p)) continue;
-    if (count++ == 0 && first) *first = mesh::Vertex(table_[b].slot);
+    if (count == 0 && first) *first = mesh::Vertex(table_[b].slot);
+    if (count == 1 && second) *second = mesh::Vertex(table_[b].slot);
+    ++count;
   }
   return count;
 }

@@ -26,8 +26,10 @@ class PositionIndex {
   // appeared or gone: each is filed again as it is now. Slots the mesh dropped off its end (an undo
   // truncates its arrays) leave too.
   void update(const mesh::SurfaceMesh& m, const std::vector<mesh::Vertex>& slots);
-  // How many live vertices are exactly at p; *first (when given) receives one of them.
-  int count_at(const mesh::SurfaceMesh& m, const Point& p, mesh::Vertex* first = nullptr) const;
+  // How many live vertices are exactly at p; *first (when given) receives one of them, and *second
+  // (when given) another one when there are several.
+  int count_at(const mesh::SurfaceMesh& m, const Point& p, mesh::Vertex* first = nullptr,
+               mesh::Vertex* second = nullptr) const;
   // The vertex at p when the caller knows positions are unique (stops at the first match).
   mesh::Vertex find(const mesh::SurfaceMesh& m, const Point& p) const;
 

@@ -39,25 +39,118 @@ bool Remesher::Impl::start_mirroring(int axis, std::vector<Vertex>& image, bool 
   // marks added are listed: disable_mirror takes them back, so that a kept remesher's marks stay
   // those a new one would give (reset_slots). With features off the marks are the boundary's,
   // which a symmetric mesh's pairs share: no pass.
-  if (opt.feature_angle_deg > 0) {
-    for (Edge e : mesh.edges()) {
-      if (!feature[e]) continue;
-      const Edge img = mirror_edge(e);
-      if (!img.is_valid()) {
-        if (lent) image = std::move(mirror.vector());  // back to the lender, as it was
-        mirror_lent = false;
-        remove_mirror();
-        return false;
-      }
-      if (!feature[img]) mirror_marked.push_back(img);
-      feature[img] = 1;
-    }
+  if (opt.feature_angle_deg > 0 && !union_mirror_features(lent)) {
+    if (lent) image = std::move(mirror.vector());  // back to the lender, as it was
+    mirror_lent = false;
+    remove_mirror();
+    return false;
   }
   if (!lent)
     for (Vertex v : mesh.vertices()) {
       const Vertex w = mirror[v];
       if (v.idx < w.idx) sizing[w] = sizing[v];
     }
+  return true;
+}
+
+void Remesher::note_mirror_changes(const std::vector<Vertex>& changed) {
+  Impl& m = *impl_;
+  if (!m.mirror_pairs_known) return;  // the next check reads every edge anyway
+  const size_t n = m.mesh.vertices_size();
+  mesh::resize_scratch(m.mirror_seen, n, 0u);
+  for (Vertex v : changed) {
+    if (v.idx >= n || m.mirror_seen[v.idx] == m.mirror_run) continue;  // (slots an undo cut off: gone)
+    m.mirror_seen[v.idx] = m.mirror_run;
+    m.mirror_changed.push_back(v);
+  }
+  // Past an eighth of the mesh, reading every edge costs about what the rings would.
+  if (m.mirror_changed.size() > n / 8 + 64) m.forget_mirror_pairs();
+}
+
+const std::vector<Edge>* Remesher::mirror_unpaired_features() const {
+  return impl_->mirror_pairs_known ? &impl_->mirror_unpaired : nullptr;
+}
+
+void Remesher::Impl::forget_mirror_pairs() {
+  mirror_pairs_known = false;
+  mirror_changed.clear();
+  mirror_unpaired.clear();
+  next_mirror_run();
+}
+
+void Remesher::Impl::next_mirror_run() {
+  if (++mirror_run == 0) {
+    std::fill(mirror_seen.begin(), mirror_seen.end(), 0u);
+    mirror_run = 1;
+  }
+}
+
+// An edge is unpaired when it is a feature and its image is not (or is no edge). Whether it is
+// depends on its own mark, its ends' images, the edge between those and that edge's mark. Since the
+// last check, marks changed only on edges with both ends within two rings of a changed slot C
+// (reset_slots derives them again on the faces around C's first ring), edges and positions only at
+// C, and the image of a slot outside C only when its old image is in C, so that its new one is too
+// (the one vertex at its mirror position moved there). So an edge whose state changed has an end
+// in R = the two rings of C, or an end whose image is in R: every unpaired edge is among those
+// edges and the ones unpaired at the last check. The answer is the whole pass's, edge for edge.
+bool Remesher::Impl::union_mirror_features(bool lent) {
+  const auto image_of = [&](Edge e) {
+    const Vertex a = mirror[mesh.vertex(e, 0)], b = mirror[mesh.vertex(e, 1)];
+    const Halfedge h = a.is_valid() && b.is_valid() ? mesh.find_halfedge(a, b) : Halfedge();
+    return h.is_valid() ? mesh.edge(h) : Edge();
+  };
+  const auto unpaired = [&](Edge e) {
+    if (!feature[e]) return false;
+    const Edge img = image_of(e);
+    return !img.is_valid() || !feature[img];
+  };
+  std::vector<Edge>& found = mirror_candidates;
+  found.clear();
+  const bool local = lent && mirror_pairs_known && mirror_pairs_angle == opt.feature_angle_deg &&
+                     mirror_pairs_axis == mirror_axis;
+  if (local) {
+    const size_t n = mesh.vertices_size();
+    mesh::resize_scratch(mirror_seen, n, 0u);
+    next_mirror_run();
+    mirror_ring.clear();
+    const auto list = [&](Vertex v) {
+      if (mirror_seen[v.idx] == mirror_run) return;
+      mirror_seen[v.idx] = mirror_run;
+      mirror_ring.push_back(v);
+    };
+    for (Vertex v : mirror_changed)
+      if (v.idx < n && !mesh.is_deleted(v)) list(v);
+    for (int ring = 0; ring < 2; ++ring)
+      for (size_t i = 0, end = mirror_ring.size(); i < end; ++i)
+        for (Vertex w : mesh.vertices(mirror_ring[i])) list(w);
+    for (size_t i = 0, end = mirror_ring.size(); i < end; ++i)
+      if (const Vertex w = mirror[mirror_ring[i]]; w.is_valid()) list(w);
+    for (Vertex v : mirror_ring)
+      for (Halfedge h : mesh.halfedges(v))
+        if (unpaired(mesh.edge(h))) found.push_back(mesh.edge(h));
+    for (Edge e : mirror_unpaired)
+      if (e.idx < mesh.edges_size() && !mesh.is_deleted(e) && unpaired(e)) found.push_back(e);
+    std::sort(found.begin(), found.end(), [](Edge a, Edge b) { return a.idx < b.idx; });
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+  } else {
+    for (Edge e : mesh.edges())
+      if (unpaired(e)) found.push_back(e);
+  }
+  if (lent) {  // a lender notes its changes (note_mirror_changes); other callers search each time
+    mirror_unpaired.assign(found.begin(), found.end());
+    mirror_changed.clear();
+    next_mirror_run();
+    mirror_pairs_known = true;
+    mirror_pairs_angle = opt.feature_angle_deg;
+    mirror_pairs_axis = mirror_axis;
+  }
+  for (Edge e : found)
+    if (!image_of(e).is_valid()) return false;
+  for (Edge e : found) {
+    const Edge img = image_of(e);  // distinct edges have distinct images, none of them in `found`
+    mirror_marked.push_back(img);
+    feature[img] = 1;
+  }
   return true;
 }
 

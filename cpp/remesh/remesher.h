@@ -121,6 +121,14 @@ class Remesher {
   // it, not filled) and handed back by disable_mirror(&known_map); false (feature marks not
   // symmetric) leaves it as it was.
   bool enable_mirror(int axis, std::vector<Vertex>& known_map);
+  // The vertex slots a step, an undo or a redo changed (geometry::MirrorTracker's list): with
+  // features on, enable_mirror(axis, known_map) rechecks the feature pairs only around these slots
+  // and their images, and the edges it found unpaired last time, instead of every edge (a change
+  // not noted here would leave its pairs unchecked).
+  void note_mirror_changes(const std::vector<Vertex>& changed);
+  // Tests: the feature edges the last enable_mirror with a known map found unpaired (features on),
+  // nullptr when it has not run since the feature marks were last made over the whole mesh.
+  const std::vector<mesh::Edge>* mirror_unpaired_features() const;
   // Mirroring ends (a stroke ends). give_back: a borrowed map goes back there, updated by the
   // passes' splits and collapses; the result says whether it is the mesh's map (the stroke
   // mirrored to its end, so the mesh changed only through mirrored stamps and passes, which keep

@@ -290,6 +290,22 @@ struct Remesher::Impl : RemeshScratch {
   // swapped back untouched). lent: the caller's map, sizes all 0 (between strokes).
   bool start_mirroring(int axis, std::vector<Vertex>& image, bool lent);
   void remove_mirror();  // mirroring off, enable_mirror's feature marks taken back
+  // With features on, a lent map's feature pairs (an edge is a feature when its image is): the
+  // edges unpaired at the last check (a feature whose image is no edge or no feature) and the
+  // slots changed since are enough to find every unpaired one (mirror.cpp), while the marks are a
+  // new remesher's (reset_slots) for this feature angle and plane.
+  bool union_mirror_features(bool lent);
+  void forget_mirror_pairs();
+  void next_mirror_run();  // a new mark value in mirror_seen
+  std::vector<Edge> mirror_unpaired;       // at the last check
+  std::vector<Vertex> mirror_changed;      // slots changed since (note_mirror_changes)
+  std::vector<std::uint32_t> mirror_seen;  // per vertex slot: mirror_run when listed
+  std::uint32_t mirror_run = 0;
+  bool mirror_pairs_known = false;
+  double mirror_pairs_angle = 0;
+  int mirror_pairs_axis = -1;
+  std::vector<Vertex> mirror_ring;  // scratch: the changed slots' two rings and their images
+  std::vector<Edge> mirror_candidates;
   std::vector<Vertex> near_scratch;
   Point mirrored(Point p) const {
     p[mirror_axis] = -p[mirror_axis];

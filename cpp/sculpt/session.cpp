@@ -119,6 +119,9 @@ struct Session::Impl {
   bool mirror_lent = false;
   bool mirror_map_whole = false;  // the stroke that ended handed the whole map back
   bool mirror_tracking = true;  // off (tests): every symmetric stroke searches, as a new session does
+  // The plane a new mesh's map is prepared for at its load: the app's default symmetry (across x),
+  // then the last symmetric stroke's.
+  int mirror_axis_hint = 0;
   // The stats shown after every stroke (quick_quality), kept from the same changes.
   mutable geometry::AngleFigures angle_figures;
   mutable size_t noted_vertices = 0, noted_faces = 0;
@@ -177,13 +180,22 @@ struct Session::Impl {
     brush.deformer().grow(mesh.vertices_size());
     const size_t marks = mesh.vertices_size() * 5 / 4 + 16;  // as move_step_touched
     component_box.reset(mesh.vertices_size());
+    // The object holding the first vertex (a one-object scan: the mesh) measured here, with the
+    // mesh, rather than walked by the first stroke on it.
+    for (mesh::Vertex v : mesh.vertices()) {
+      component_box.measure(mesh, v);
+      break;
+    }
     if (step_mark.size() < marks) step_mark.resize(marks, 0u);
     // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
     // at the first stroke or press after the load, where it would be a hitch.
     slot_tree.invalidate();
     slot_tree.sync(mesh);
-    mirror.forget();
+    // The map the first symmetric stroke takes, prepared here (the load reads every vertex anyway):
+    // a search in that stroke was a 63-68 ms hitch at 1.1M triangles.
+    mirror.prepare(mesh, mirror_axis_hint);
     mirror_lent = false;
+    lend_mirror_map_once();
     angle_figures.invalidate();
     changes.everything = true;
     changes.topology_changed = true;
@@ -282,8 +294,23 @@ struct Session::Impl {
     else
       mirror.follow(mesh, *changed);
   }
+  // The remesher borrows the map once outside a stroke (a new mesh, new feature settings), so that
+  // the first symmetric stroke finds it ready: the mesh's mirror array made from it takes room for
+  // the mesh's growth (a copy of the map, 3.3M instructions at 1.1M triangles, kept by later
+  // strokes), and with features on the remesher finds the feature edges whose image is no feature
+  // here, and then only around what changed (else the first stroke would read every edge).
+  // Borrowing the map and giving it back changes nothing else. False: no map to lend.
+  bool lend_mirror_map_once() {
+    if (!remesher || !mirror_tracking) return false;
+    std::vector<mesh::Vertex>* map = mirror.map(mesh, mirror_axis_hint);
+    if (!map || !mirror.mask_symmetric()) return false;
+    remesher->enable_mirror(mirror_axis_hint, *map);
+    remesher->disable_mirror(mirror.lent_storage());
+    return true;
+  }
   // A symmetric stroke starts: the remesher borrows the kept map (or searches, with tracking off).
   bool start_mirror(const mesh::SurfaceMesh& m, remesh::Remesher& r, int axis) {
+    mirror_axis_hint = axis;
     if (!mirror_tracking) return r.enable_mirror(axis);
     std::vector<mesh::Vertex>* map = mirror.map(m, axis);
     mirror_lent = map && mirror.mask_symmetric() && r.enable_mirror(axis, *map);
@@ -298,12 +325,17 @@ struct Session::Impl {
       // passes: the map it borrowed comes back as the mesh's map. Anything else is followed from
       // the slots it touched.
       mirror_map_whole = remesher->disable_mirror(mirror_lent ? mirror.lent_storage() : nullptr);
-      if (mirror_lent && !mirror_map_whole) mirror.forget_map();  // it came back not matching the mesh
+      // A map that came back not matching the mesh (the stroke lost the symmetry on the way) still
+      // holds the right entries for the slots the stroke did not touch (only its own operations
+      // rewrote entries): it is followed from the touched slots like any change. One that did not
+      // come back is forgotten (the next question settles every vertex).
+      if (mirror_lent && !mirror_map_whole && mirror.lent_storage()->empty()) mirror.forget_map();
       mirror_lent = false;
       // The sizing the stroke or grab measured goes back to unmeasured and the marks around what
       // it moved follow the new surface: the next one starts as with a new remesher.
       move_step_touched();
       remesher->reset_slots(step_touched);
+      remesher->note_mirror_changes(step_touched);
       remesher_kept = true;
       component_box.follow(mesh, step_touched);
     }  // (a mask stroke changes no geometry: a kept remesher and the surface tree stay valid)
@@ -333,6 +365,7 @@ struct Session::Impl {
       // values, without its pass over the mesh.
       if (remesher) {
         remesher->reset_slots(touched);
+        remesher->note_mirror_changes(touched);
       }
       follow_mirror(false);
       component_box.follow(mesh, touched);
@@ -398,6 +431,8 @@ void Session::set_settings(const nlohmann::json& j) {
   for (int i = 0; i < 3; ++i)
     if (*given[i]) s.relative[i] = (*given[i])->percent;
   if (s.remesher) s.remesher->set_options(o);
+  if (p.features && s.options.feature_angle_deg > 0 && s.has_mesh && !s.grabbing && !s.brushing && !s.masking)
+    s.lend_mirror_map_once();
 }
 
 nlohmann::json Session::settings() const {
@@ -795,6 +830,14 @@ const std::vector<mesh::Vertex>* Session::mirror_map(int axis) {
 }
 size_t Session::mirror_settled() const { return impl_->mirror.last_settled(); }
 void Session::set_mirror_tracking(bool on) { impl_->mirror_tracking = on; }
+const std::vector<mesh::Edge>* Session::unpaired_mirror_features(int axis) {
+  Impl& s = *impl_;
+  s.require_mesh("unpaired_mirror_features");
+  s.end_grab();
+  s.mirror_axis_hint = axis;
+  if (!(s.options.feature_angle_deg > 0) || !s.lend_mirror_map_once()) return nullptr;
+  return s.remesher->mirror_unpaired_features();
+}
 
 size_t Session::history_full_diffs() const { return impl_->history.full_diffs(); }
 

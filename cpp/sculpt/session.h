@@ -212,6 +212,10 @@ class Session {
   const std::vector<mesh::Vertex>* mirror_map(int axis);
   size_t mirror_settled() const;
   void set_mirror_tracking(bool on);
+  // Tests: with features on and a map across `axis`, the feature edges whose image is no edge or
+  // no feature, as the strokes' remesher finds them from the changes since its last check
+  // (Remesher::note_mirror_changes); nullptr without features, a map or a mask its own image.
+  const std::vector<mesh::Edge>* unpaired_mirror_features(int axis);
 
  private:
   struct Impl;
