@@ -10,6 +10,7 @@
 // A Remesher keeps its reference surface (AABB tree, curvature, sizing) alive between calls so
 // that interactive use pays only for what changed; remesh() is the one-shot batch entry.
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,6 +92,13 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
+  // No region operation creates a crossing of two triangles (region_guard.cpp; on by default).
+  // Off: how the region iterations were before, for the tests and measurements that compare.
+  void set_region_crossing_guard(bool on);
+  // Called with the mesh right before (done false) and right after (done true) each region
+  // iteration's passes: tests count the crossings an iteration creates (nullptr: none).
+  using RegionWatch = std::function<void(const SurfaceMesh& mesh, bool done)>;
+  void watch_region_iterations(RegionWatch watch);
   // The next iterate_region measures the sizing of its whole scope again (it does every few
   // calls; a large scope, measured a slice per call, never all at once once measured): a caller
   // with a frame budget can give that frame's other work less.
