@@ -171,7 +171,7 @@ void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
 // triangles are neighbours: their boxes overlap), then each is read once from the mesh.
 namespace {
 // Whether the faces with corners a and b crossed at the positions `before` (per vertex slot).
-bool crossed_before(const std::vector<Point>& before, const std::array<std::uint32_t, 3>& a,
+bool crossed_before(const PlacesBefore& before, const std::array<std::uint32_t, 3>& a,
                     const std::array<std::uint32_t, 3>& b) {
   const Point pa[3] = {before[a[0]], before[a[1]], before[a[2]]}, pb[3] = {before[b[0]], before[b[1]], before[b[2]]};
   if (geometry::collinear(pa[0], pa[1], pa[2]) || geometry::collinear(pb[0], pb[1], pb[2])) return false;
@@ -181,7 +181,7 @@ bool crossed_before(const std::vector<Point>& before, const std::array<std::uint
 
 CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n,
                                                       Vertex replaced0, Vertex replaced1, Face skip0, Face skip1,
-                                                      const std::vector<Point>* before) {
+                                                      const PlacesBefore* before) {
   Crossing crossing;
   if (n == 0) return crossing;
   Point lo = ts[0].p[0], hi = ts[0].p[0];
@@ -335,7 +335,7 @@ bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
 }
 
 CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Vertex v,
-                                                    const std::vector<Point>* before) {
+                                                    const PlacesBefore* before) {
   candidates_.clear();
   if (!active()) return {};
   for (Face f : mesh.faces(v)) {
@@ -367,7 +367,8 @@ bool CrossingGuard::share_an_embedded_fan(const SurfaceMesh& mesh, const std::ar
 // them back froze cgal/corner_poly.off's crossing corner (1,616 new pairs at epsilon 0.5 %). For
 // the same reason a face that turns over without crossing anything stays (bunny.off's two
 // crossing pairs are untangled that way).
-size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before) {
+size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& places_before) {
+  const PlacesBefore before(places_before);
   // Each face's corners once, in face order: the sweep below meets every face several times.
   face_corners_.resize(mesh.faces_size());
   face_normals_.resize(mesh.faces_size());
@@ -391,7 +392,7 @@ size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<P
   return send_back(mesh, before);
 }
 
-bool CrossingGuard::note_face(const SurfaceMesh& mesh, const std::vector<Point>& before, Face f, size_t key) {
+bool CrossingGuard::note_face(const SurfaceMesh& mesh, const PlacesBefore& before, Face f, size_t key) {
   const Point* pos = mesh.positions().data();
   const std::array<std::uint32_t, 3> c = corners(mesh, f);
   face_corners_[key] = c;
@@ -402,7 +403,7 @@ bool CrossingGuard::note_face(const SurfaceMesh& mesh, const std::vector<Point>&
   return moved_face_[key];
 }
 
-void CrossingGuard::list_if_crossing_anew(const SurfaceMesh& mesh, const std::vector<Point>& before,
+void CrossingGuard::list_if_crossing_anew(const SurfaceMesh& mesh, const PlacesBefore& before,
                                           const std::array<std::uint32_t, 3>& cf, const Vec3& nf,
                                           const std::array<std::uint32_t, 3>& cg, const Vec3& ng) {
   const Point* pos = mesh.positions().data();
@@ -413,13 +414,13 @@ void CrossingGuard::list_if_crossing_anew(const SurfaceMesh& mesh, const std::ve
   list_moved_corners(mesh, before, cg);
 }
 
-void CrossingGuard::list_moved_corners(const SurfaceMesh& mesh, const std::vector<Point>& before,
+void CrossingGuard::list_moved_corners(const SurfaceMesh& mesh, const PlacesBefore& before,
                                        const std::array<std::uint32_t, 3>& c) {
   for (std::uint32_t w : c)
     if (mesh.positions()[w] != before[w]) to_undo_.push_back(Vertex(w));
 }
 
-size_t CrossingGuard::send_back(SurfaceMesh& mesh, const std::vector<Point>& before, bool stop_when_spent) {
+size_t CrossingGuard::send_back(SurfaceMesh& mesh, const PlacesBefore& before, bool stop_when_spent) {
   size_t undone = 0;
   for (;;) {
     to_check_.clear();

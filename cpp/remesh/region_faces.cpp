@@ -33,20 +33,13 @@ void Remesher::Impl::collect_region_faces() {
 }
 
 // The list is the one the guard started with (the collapses and flips since then deleted some of
-// its faces and rewrote others, but made none): every corner of its live faces gets its place
-// before the relaxation.
+// its faces and rewrote others, but made none). Only scope vertices moved: their places before
+// the relaxation are relaxed_from's, found through scope_at.
 void Remesher::Impl::undo_region_crossing_moves() {
-  mesh::resize_scratch(before_move, mesh.vertices_size());
-  const Point* pos = mesh.positions().data();
-  for (const Face f : region_faces) {
-    if (mesh.is_deleted(f)) continue;
-    Vertex c[3];
-    mesh.face_vertices(f, c);
-    for (const Vertex w : c) before_move[w.idx] = pos[w.idx];
-  }
-  for (size_t i = 0; i < scope_vertices.size(); ++i)
-    if (!mesh.is_deleted(scope_vertices[i])) before_move[scope_vertices[i].idx] = relaxed_from[i];
-  crossing_guard.undo_region_crossing_moves(mesh, before_move, region_faces);
+  mesh::resize_scratch(scope_at, mesh.vertices_size());
+  for (size_t i = 0; i < scope_vertices.size(); ++i) scope_at[scope_vertices[i].idx] = static_cast<std::uint32_t>(i);
+  const PlacesBefore before(mesh.positions().data(), scope_at, scope_vertices, relaxed_from);
+  crossing_guard.undo_region_crossing_moves(mesh, before, region_faces);
 }
 
 }  // namespace adasculpt::remesh

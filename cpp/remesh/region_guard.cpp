@@ -88,7 +88,7 @@ void CrossingGuard::start_region(const SurfaceMesh& mesh, const std::vector<Face
 // than half the vertices cross": harsh pinch strokes do that in many calls, and their crossings
 // are real.) Its collapses and flips stay checked. A degenerate triangle (no face crossed) is no
 // crossing: left to fix_bad_faces, as the sweep leaves it.
-size_t CrossingGuard::undo_region_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before,
+size_t CrossingGuard::undo_region_crossing_moves(SurfaceMesh& mesh, const PlacesBefore& before,
                                                  std::vector<Face>& faces) {
   if (!active() || !in_region_ || region_out_of_scale_ || faces.size() != region_faces_) return 0;
   // The faces the passes deleted leave the list; the others' corners, normals and moves by

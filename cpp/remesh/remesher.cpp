@@ -102,7 +102,7 @@ void Remesher::reserve_scratch() {
   mesh::resize_scratch(m.kappa, nv);
   mesh::resize_scratch(m.kappa_known, nv, std::uint8_t(0));
   mesh::resize_scratch(m.region_face_listed, nf, std::uint8_t(0));
-  mesh::resize_scratch(m.before_move, nv);
+  mesh::resize_scratch(m.scope_at, nv);
   m.crossing_guard.reserve_region(m.mesh);
 }
 

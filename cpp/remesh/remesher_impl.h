@@ -417,6 +417,7 @@ struct Remesher::Impl : RemeshScratch {
   // region operation rewrites, and the ring next to the triangles it creates.
   std::vector<Face> region_faces;
   std::vector<std::uint8_t> region_face_listed;  // per face slot, all 0 between calls
+  std::vector<std::uint32_t> scope_at;           // per vertex slot: its index in scope_vertices (when it is there)
   void collect_region_faces();
   void undo_region_crossing_moves();
   // Batch use (Remesher::keep_guard_grid): the grid lives from one call to the next, suspended,
