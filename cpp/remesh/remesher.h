@@ -92,8 +92,9 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
-  // No region operation creates a crossing of two triangles (region_guard.cpp; on by default).
-  // Off: how the region iterations were before, for the tests and measurements that compare.
+  // On: no region operation creates a crossing of two triangles (region_guard.cpp). Off by
+  // default (the region iterations as they were): a 10k-vertex pull's frames cost 1.6x the
+  // instructions (median; 2.8x the largest) with it.
   void set_region_crossing_guard(bool on);
   // Called with the mesh right before (done false) and right after (done true) each region
   // iteration's passes: tests count the crossings an iteration creates (nullptr: none).
