@@ -101,9 +101,11 @@ void Remesher::reserve_scratch() {
   mesh::resize_scratch(m.valence_excess, nv);
   mesh::resize_scratch(m.kappa, nv);
   mesh::resize_scratch(m.kappa_known, nv, std::uint8_t(0));
-  mesh::resize_scratch(m.region_face_listed, nf, std::uint8_t(0));
-  mesh::resize_scratch(m.scope_at, nv);
-  m.crossing_guard.reserve_region(m.mesh);
+  if (m.region_crossing_guard) {  // (its per-slot arrays: none while it is off)
+    mesh::resize_scratch(m.region_face_listed, nf, std::uint8_t(0));
+    mesh::resize_scratch(m.scope_at, nv);
+    m.crossing_guard.reserve_region(m.mesh);
+  }
 }
 
 IterationStats Remesher::Impl::run_iteration(bool do_project) {

@@ -149,7 +149,8 @@ class Remesher {
   // terms, valences, curvature) to the mesh's slots now, zero-filled, so that a sculpting frame
   // touches only its region's entries: sized in the first frame that needs them, they cost a
   // stroke on 1.1M triangles tens of milliseconds of allocation and page faults (issue 18). A
-  // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch).
+  // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch). The
+  // region crossing guard's arrays too, when it is on (set_region_crossing_guard first).
   void reserve_scratch();
   // Batch use (remesh()): the caller promises that between this remesher's calls nothing edits
   // the mesh but a garbage collection. The crossing guard's grid then lives from one iterate() to

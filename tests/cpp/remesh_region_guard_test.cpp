@@ -57,8 +57,8 @@ RegionCrossings harsh_strokes(bool guard) {
   const Point ear(-0.02, 0.17, -0.015);
   mesh::SurfaceMesh mesh = crop(full, ear, 0.045);
   remesh::Remesher remesher(mesh, remesh::default_options_for(full));
-  remesher.reserve_scratch();
   remesher.set_region_crossing_guard(guard);
+  remesher.reserve_scratch();
   RegionCrossings counted;
   std::optional<mesh::SurfaceMesh> before;
   geometry::SelfIntersectionReport before_pairs;
