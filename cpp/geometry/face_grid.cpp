@@ -7,6 +7,8 @@
 
 #include <glm/common.hpp>
 
+#include "mesh/scratch.h"
+
 namespace adasculpt::geometry {
 
 namespace {
@@ -80,17 +82,9 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
     lo = glm::min(lo, mesh.position(v));
     hi = glm::max(hi, mesh.position(v));
   }
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.0});
-  cell_size_ = std::max(cell_size, extent / kMaxCellsPerAxis);
-  if (!(cell_size_ > 0)) cell_size_ = 1;
-  inv_cell_ = 1.0 / cell_size_;
-  size_t buckets = 1024;
-  while (buckets < kBucketsPerFace * mesh.n_faces()) buckets *= 2;
-  mask_ = static_cast<std::uint32_t>(buckets - 1);
-  // Counting sort by bucket: count, offsets, then fill (start_[b + 1] counts down to start_[b]).
   // The face boxes from one scan of the halfedges in memory order: following each face's
   // halfedges instead was the slow part of a build (a cache miss or more per corner on a
-  // remeshed mesh, whose elements are far from memory order). Read again by the second pass.
+  // remeshed mesh, whose elements are far from memory order). Read again by fill().
   const size_t n_slots = mesh.faces_size();
   box_lo_.assign(n_slots, Point(std::numeric_limits<double>::infinity()));
   box_hi_.assign(n_slots, Point(-std::numeric_limits<double>::infinity()));
@@ -105,25 +99,67 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
     box_lo_[f.idx] = glm::min(box_lo_[f.idx], p);
     box_hi_[f.idx] = glm::max(box_hi_[f.idx], p);
   }
-  start_.assign(buckets + 1, 0u);
   const std::uint8_t* fdel = mesh.face_deleted_data();
+  listed_ = false;
+  fill(mesh, cell_size, lo, hi, mesh.n_faces(), n_slots, [&](auto&& visit) {
+    for (size_t f = 0; f < n_slots; ++f)
+      if (!fdel[f]) visit(f, static_cast<std::uint32_t>(f));
+  });
+}
+
+void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size, const std::vector<mesh::Face>& faces) {
+  Point lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  const size_t n = faces.size();
+  mesh::resize_scratch(box_lo_, n);
+  mesh::resize_scratch(box_hi_, n);
+  mesh::resize_scratch(listed_faces_, n);
+  mesh::resize_scratch(listed_at_, mesh.faces_size());
+  for (size_t i = 0; i < n; ++i) {
+    const mesh::Face f = faces[i];
+    mesh::Vertex v[3];
+    mesh.face_vertices(f, v);
+    const Point &a = mesh.position(v[0]), &b = mesh.position(v[1]), &c = mesh.position(v[2]);
+    box_lo_[i] = glm::min(a, glm::min(b, c));
+    box_hi_[i] = glm::max(a, glm::max(b, c));
+    lo = glm::min(lo, box_lo_[i]);
+    hi = glm::max(hi, box_hi_[i]);
+    listed_faces_[i] = f.idx;
+    listed_at_[f.idx] = static_cast<std::uint32_t>(i);
+  }
+  listed_ = true;
+  fill(mesh, cell_size, lo, hi, n, n, [&](auto&& visit) {
+    for (size_t i = 0; i < n; ++i) visit(i, faces[i].idx);
+  });
+}
+
+template <class ForEachFace>
+void FaceGrid::fill(const mesh::SurfaceMesh& mesh, double cell_size, const Point& lo, const Point& hi, size_t n_faces,
+                    size_t n_keys, ForEachFace&& for_each_face) {
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 0.0});
+  cell_size_ = std::max(cell_size, extent / kMaxCellsPerAxis);
+  if (!(cell_size_ > 0)) cell_size_ = 1;
+  inv_cell_ = 1.0 / cell_size_;
+  size_t buckets = 1024;
+  while (buckets < kBucketsPerFace * n_faces) buckets *= 2;
+  mask_ = static_cast<std::uint32_t>(buckets - 1);
+  // Counting sort by bucket: count, offsets, then fill (start_[b + 1] counts down to start_[b]).
+  start_.assign(buckets + 1, 0u);
   // Each face's entry and cells once, kept for the fill pass: computing them (float rounding,
   // floors) was a fifth of a build.
-  box_entry_.resize(n_slots);
-  box_cells_.resize(n_slots);
-  for (size_t f = 0; f < n_slots; ++f) {
-    if (fdel[f]) continue;
-    box_entry_[f] = entry_of_box(static_cast<std::uint32_t>(f), box_lo_[f], box_hi_[f], &box_cells_[f]);
-    for_each_bucket(box_cells_[f], [&](std::uint32_t b) { ++start_[b + 1]; });
-  }
+  mesh::resize_scratch(box_entry_, n_keys);
+  mesh::resize_scratch(box_cells_, n_keys);
+  for_each_face([&](size_t key, std::uint32_t f) {
+    box_entry_[key] = entry_of_box(f, box_lo_[key], box_hi_[key], &box_cells_[key]);
+    box_entry_[key].next = static_cast<std::uint32_t>(key);
+    for_each_bucket(box_cells_[key], [&](std::uint32_t b) { ++start_[b + 1]; });
+  });
   for (size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
   entries_.resize(start_[buckets]);
-  placed_.resize(n_slots);
-  for (size_t f = 0; f < n_slots; ++f) {
-    if (fdel[f]) continue;
-    const CellRange& r = box_cells_[f];
-    const Entry& entry = box_entry_[f];
-    Placed& placed = placed_[f];
+  mesh::resize_scratch(placed_, n_keys);
+  for_each_face([&](size_t key, std::uint32_t) {
+    const CellRange& r = box_cells_[key];
+    const Entry& entry = box_entry_[key];
+    Placed& placed = placed_[key];
     placed.count = 0;
     bool all = true;
     for_each_bucket(r, [&](std::uint32_t b) {
@@ -135,7 +171,7 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
         all = false;
     });
     if (!all) placed.count = 0;
-  }
+  });
   // start_[b + 1] now holds the start of bucket b: move the offsets down by one bucket.
   for (size_t b = 0; b < buckets; ++b) start_[b] = start_[b + 1];
   start_[buckets] = static_cast<std::uint32_t>(entries_.size());
@@ -147,30 +183,47 @@ void FaceGrid::build(const mesh::SurfaceMesh& mesh, double cell_size) {
   built_ = true;
 }
 
+FaceGrid::Placed* FaceGrid::placed_of(mesh::Face f) {
+  if (!listed_) return f.idx < placed_.size() ? &placed_[f.idx] : nullptr;
+  if (f.idx >= listed_at_.size()) return nullptr;
+  const std::uint32_t at = listed_at_[f.idx];  // (stale unless the list holds f there)
+  return at < listed_faces_.size() && listed_faces_[at] == f.idx ? &placed_[at] : nullptr;
+}
+
 void FaceGrid::insert(const mesh::SurfaceMesh& mesh, mesh::Face f) {
   if (!built_) return;
-  if (overflow_.size() > rebuild_at_) {
+  if (overflow_.size() > rebuild_at_ && !listed_) {
     build(mesh, cell_size_);
     return;
   }
   if (f.idx >= seen_.size()) seen_.resize(mesh.faces_size(), 0u);
   CellRange r;
   Entry entry = entry_of(mesh, f, &r);
-  if (f.idx < placed_.size() && placed_[f.idx].count > 0) {
-    Placed& placed = placed_[f.idx];
-    const Entry& old = entries_[placed.at[0]];
+  Placed* placed = placed_of(f);
+  if (placed && placed->count > 0) {
+    const Entry& old = entries_[placed->at[0]];
     const CellRange was = cells_of(Point(old.lo[0], old.lo[1], old.lo[2]), Point(old.hi[0], old.hi[1], old.hi[2]));
     if (std::equal(r.lo, r.lo + 3, was.lo) && std::equal(r.hi, r.hi + 3, was.hi)) {
-      for (std::uint32_t k = 0; k < placed.count; ++k) entries_[placed.at[k]] = entry;
+      entry.next = old.next;  // (the key of a built entry)
+      for (std::uint32_t k = 0; k < placed->count; ++k) entries_[placed->at[k]] = entry;
       return;
     }
-    placed.count = 0;  // from now on in the overflow lists (its old entries stay, stale)
+    // From now on in the overflow lists. A listed grid's sweep must not meet the old box: its
+    // entries are emptied. (The whole-mesh grid leaves them, stale, as its queries always did.)
+    if (listed_)
+      for (std::uint32_t k = 0; k < placed->count; ++k) {
+        Entry& stale = entries_[placed->at[k]];
+        std::fill(stale.lo, stale.lo + 3, std::numeric_limits<float>::infinity());
+        std::fill(stale.hi, stale.hi + 3, -std::numeric_limits<float>::infinity());
+      }
+    placed->count = 0;
   }
   for_each_bucket(r, [&](std::uint32_t b) {
     entry.next = overflow_head_[b];
     overflow_.push_back(entry);
     overflow_head_[b] = static_cast<std::uint32_t>(overflow_.size() - 1);
   });
+  if (listed_) return;  // never rebuilt (a rebuild would list the whole mesh)
   span_sum_ += static_cast<size_t>(std::max({r.hi[0] - r.lo[0], r.hi[1] - r.lo[1], r.hi[2] - r.lo[2]}) + 1);
   // Faces that span many cells cost an entry per cell and make every query near them visit as
   // many: once the new faces average more than kMaxMeanSpan cells across, the cells double.
@@ -218,5 +271,10 @@ bool FaceGrid::gather(const Point& lo, const Point& hi, std::vector<mesh::Face>&
 }
 
 bool FaceGrid::overflowed() const { return !overflow_.empty(); }
+
+void FaceGrid::reserve_listed(size_t face_slots) {
+  mesh::resize_scratch(listed_at_, face_slots);
+  if (seen_.size() < face_slots) seen_.resize(face_slots, 0u);
+}
 
 }  // namespace adasculpt::geometry

@@ -21,6 +21,15 @@ class FaceGrid {
  public:
   // Every live face of the mesh, in cells of the given edge length (> 0).
   void build(const mesh::SurfaceMesh& mesh, double cell_size);
+  // Only the listed live faces (a sculpting frame's region and the ring around it), at a cost
+  // proportional to the list: its scratch is indexed by list position (a face's key), but for a
+  // map from face slot to position (4 bytes a slot, reserve_listed). Such a grid never rebuilds
+  // itself (a rebuild would list the whole mesh): its inserts that leave their cells go to the
+  // overflow lists, which a region's few operations keep short.
+  void build(const mesh::SurfaceMesh& mesh, double cell_size, const std::vector<mesh::Face>& faces);
+  // Sizes the per-face-slot arrays a listed build and its queries use for a mesh of this many
+  // face slots (no allocation in a frame but for the slots the frame adds).
+  void reserve_listed(size_t face_slots);
   void clear() { built_ = false; }
   bool built() const { return built_; }
   // Adds f's current box (f live). Rebuilds from scratch when stale entries pile up, and with
@@ -46,6 +55,32 @@ class FaceGrid {
   // which costs two floors and a hash per pair (the guard's sweep rejects nearly all pairs).
   template <class Wanted, class Visit>
   bool for_each_overlapping_pair(size_t& budget, Wanted&& wanted, Visit&& visit) const {
+    return sweep(budget, [](const Entry& e) { return mesh::Face(e.face); }, wanted, visit);
+  }
+  // The same over a listed build's entries, naming each face by its key (position in the list):
+  // a caller's per-face data is then as large as the list, not the mesh.
+  template <class Wanted, class Visit>
+  bool for_each_overlapping_listed_pair(size_t& budget, Wanted&& wanted, Visit&& visit) const {
+    return sweep(budget, [](const Entry& e) { return e.next; }, wanted, visit);
+  }
+  bool overflowed() const;  // inserts since the last build
+
+ private:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  // The box is stored rounded outwards to floats: most candidates are rejected by the entry
+  // alone, without reading the mesh.
+  struct Entry {
+    float lo[3], hi[3];
+    // next: an overflow entry's next in its bucket (inserts after the build); a built entry's
+    // key, its face's index into placed_ (the face slot, or in a listed build its list position).
+    std::uint32_t face, next;
+  };
+  struct CellRange {
+    std::int64_t lo[3], hi[3];
+  };
+  CellRange cells_of(const Point& lo, const Point& hi) const;
+  template <class Key, class Wanted, class Visit>
+  bool sweep(size_t& budget, Key&& key, Wanted&& wanted, Visit&& visit) const {
     const std::uint32_t buckets = mask_ + 1;
     for (std::uint32_t b = 0; b < buckets; ++b)
       for (std::uint32_t i = start_[b]; i < start_[b + 1]; ++i)
@@ -56,28 +91,14 @@ class FaceGrid {
           if (e.face == f.face || e.hi[0] < f.lo[0] || f.hi[0] < e.lo[0] || e.hi[1] < f.lo[1] || f.hi[1] < e.lo[1] ||
               e.hi[2] < f.lo[2] || f.hi[2] < e.lo[2])
             continue;
-          if (!wanted(mesh::Face(e.face), mesh::Face(f.face))) continue;
+          if (!wanted(key(e), key(f))) continue;
           if (bucket(cell_of(std::max(e.lo[0], f.lo[0])), cell_of(std::max(e.lo[1], f.lo[1])),
                      cell_of(std::max(e.lo[2], f.lo[2]))) != b)
             continue;
-          if (!visit(mesh::Face(e.face), mesh::Face(f.face))) return false;
+          if (!visit(key(e), key(f))) return false;
         }
     return true;
   }
-  bool overflowed() const;  // inserts since the last build
-
- private:
-  static constexpr std::uint32_t kNone = 0xffffffffu;
-  // The box is stored rounded outwards to floats: most candidates are rejected by the entry
-  // alone, without reading the mesh.
-  struct Entry {
-    float lo[3], hi[3];
-    std::uint32_t face, next;  // next: the bucket's next overflow entry (inserts after the build)
-  };
-  struct CellRange {
-    std::int64_t lo[3], hi[3];
-  };
-  CellRange cells_of(const Point& lo, const Point& hi) const;
   // The cell index along an axis of a coordinate, as cells_of computes it (the pair sweep's
   // dedup needs one point's cell: half the floors of cells_of).
   // (Rounded down by hand: std::floor is a library call here, made six times per face and query.)
@@ -93,6 +114,11 @@ class FaceGrid {
   }
   Entry entry_of(const mesh::SurfaceMesh& mesh, mesh::Face f, CellRange* cells) const;
   Entry entry_of_box(std::uint32_t face, const Point& lo, const Point& hi, CellRange* cells) const;
+  // The second half of a build, after box_lo_/box_hi_ hold the boxes (by key) of the faces
+  // for_each_face visits (n_faces of them, all live, keys below n_keys) as visit(key, face).
+  template <class ForEachFace>
+  void fill(const mesh::SurfaceMesh& mesh, double cell_size, const Point& lo, const Point& hi, size_t n_faces,
+            size_t n_keys, ForEachFace&& for_each_face);
   template <class Visit>
   void for_each_bucket(const CellRange& r, Visit&& visit) const {
     for (std::int64_t i = r.lo[0]; i <= r.hi[0]; ++i)
@@ -105,6 +131,7 @@ class FaceGrid {
   }
 
   bool built_ = false;
+  bool listed_ = false;  // built over a list of faces: never rebuilt by insert()
   double cell_size_ = 1, inv_cell_ = 1;
   std::uint32_t mask_ = 0;
   size_t rebuild_at_ = 0;  // overflow entries beyond which insert() rebuilds
@@ -125,10 +152,14 @@ class FaceGrid {
     std::uint32_t count = 0;
     std::uint32_t at[kMaxPlaced];
   };
-  std::vector<Placed> placed_;
-  std::vector<Point> box_lo_, box_hi_;  // build()'s scratch: per face slot
-  std::vector<Entry> box_entry_;        // build()'s scratch: per face slot
-  std::vector<CellRange> box_cells_;    // build()'s scratch: per face slot
+  std::vector<Placed> placed_;  // per key
+  Placed* placed_of(mesh::Face f);  // nullptr: not placed by the current build
+  std::vector<Point> box_lo_, box_hi_;  // build()'s scratch: per key
+  std::vector<Entry> box_entry_;        // build()'s scratch: per key
+  std::vector<CellRange> box_cells_;    // build()'s scratch: per key
+  // A listed build's faces by position, and per face slot its position (current only where
+  // listed_faces_ agrees: never cleared).
+  std::vector<std::uint32_t> listed_faces_, listed_at_;
   std::vector<std::uint32_t> seen_;  // per face slot: == run_ when gathered by the current query
   std::uint32_t run_ = 0;
 };

@@ -117,12 +117,13 @@ std::array<std::uint32_t, 3> corners(const mesh::SurfaceMesh& mesh, mesh::Face f
 
 void CrossingGuard::start(const SurfaceMesh& mesh) {
   active_ = true;
+  in_region_ = false;
   reset_budget();
   build_grid(mesh);
 }
 
 void CrossingGuard::resume(const SurfaceMesh& mesh) {
-  if (!grid_.built() || (!active_ && mesh.faces_size() != kept_face_slots_)) return start(mesh);
+  if (!grid_.built() || in_region_ || (!active_ && mesh.faces_size() != kept_face_slots_)) return start(mesh);
   active_ = true;
   reset_budget();
   work_left_ = kMinWork + kWorkPerFace * mesh.n_faces();
@@ -170,7 +171,7 @@ void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
 // triangles are neighbours: their boxes overlap), then each is read once from the mesh.
 namespace {
 // Whether the faces with corners a and b crossed at the positions `before` (per vertex slot).
-bool crossed_before(const std::vector<Point>& before, const std::array<std::uint32_t, 3>& a,
+bool crossed_before(const PlacesBefore& before, const std::array<std::uint32_t, 3>& a,
                     const std::array<std::uint32_t, 3>& b) {
   const Point pa[3] = {before[a[0]], before[a[1]], before[a[2]]}, pb[3] = {before[b[0]], before[b[1]], before[b[2]]};
   if (geometry::collinear(pa[0], pa[1], pa[2]) || geometry::collinear(pb[0], pb[1], pb[2])) return false;
@@ -180,7 +181,7 @@ bool crossed_before(const std::vector<Point>& before, const std::array<std::uint
 
 CrossingGuard::Crossing CrossingGuard::first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n,
                                                       Vertex replaced0, Vertex replaced1, Face skip0, Face skip1,
-                                                      const std::vector<Point>* before) {
+                                                      const PlacesBefore* before) {
   Crossing crossing;
   if (n == 0) return crossing;
   Point lo = ts[0].p[0], hi = ts[0].p[0];
@@ -334,7 +335,7 @@ bool CrossingGuard::flip_crosses(const SurfaceMesh& mesh, Edge e) {
 }
 
 CrossingGuard::Crossing CrossingGuard::fan_crossing(const SurfaceMesh& mesh, Vertex v,
-                                                    const std::vector<Point>* before) {
+                                                    const PlacesBefore* before) {
   candidates_.clear();
   if (!active()) return {};
   for (Face f : mesh.faces(v)) {
@@ -366,65 +367,81 @@ bool CrossingGuard::share_an_embedded_fan(const SurfaceMesh& mesh, const std::ar
 // them back froze cgal/corner_poly.off's crossing corner (1,616 new pairs at epsilon 0.5 %). For
 // the same reason a face that turns over without crossing anything stays (bunny.off's two
 // crossing pairs are untangled that way).
-size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before) {
-  const Point* pos = mesh.positions().data();
-  auto moved = [&](std::uint32_t w) { return pos[w] != before[w]; };
+size_t CrossingGuard::undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& places_before) {
+  const PlacesBefore before(places_before);
   // Each face's corners once, in face order: the sweep below meets every face several times.
   face_corners_.resize(mesh.faces_size());
   face_normals_.resize(mesh.faces_size());
   face_degenerate_.resize(mesh.faces_size());
   moved_face_.assign(mesh.faces_size(), 0);
   bool any = false;
-  for (Face f : mesh.faces()) {
-    const std::array<std::uint32_t, 3> c = corners(mesh, f);
-    face_corners_[f.idx] = c;
-    const Point p[3] = {pos[c[0]], pos[c[1]], pos[c[2]]};
-    face_normals_[f.idx] = normal_of(p);
-    face_degenerate_[f.idx] = geometry::collinear(p[0], p[1], p[2]);
-    moved_face_[f.idx] = moved(c[0]) || moved(c[1]) || moved(c[2]);
-    any = any || moved_face_[f.idx];
-  }
+  for (Face f : mesh.faces()) any = note_face(mesh, before, f, f.idx) || any;
   if (!any) return 0;
   fan_embedded_.assign(mesh.vertices_size(), kUnknown);
   start(mesh);
-  auto undo_corners = [&](const std::array<std::uint32_t, 3>& c) {
-    for (std::uint32_t w : c)
-      if (moved(w)) to_undo_.push_back(Vertex(w));
-  };
   to_undo_.clear();
   auto wanted = [&](Face f, Face g) {
     return (moved_face_[f.idx] || moved_face_[g.idx]) && !face_degenerate_[f.idx] && !face_degenerate_[g.idx] &&
            !share_an_embedded_fan(mesh, face_corners_[f.idx], face_corners_[g.idx]);
   };
   grid_.for_each_overlapping_pair(work_left_, wanted, [&](Face f, Face g) {
-    const std::array<std::uint32_t, 3>&cf = face_corners_[f.idx], &cg = face_corners_[g.idx];
-    const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
-    if (surely_apart(pf, cf, face_normals_[f.idx], pg, cg, face_normals_[g.idx]) ||
-        !geometry::faces_intersect(pf, cf, pg, cg))
-      return true;
-    if (crossed_before(before, cf, cg)) return true;  // not the moves' doing
-    undo_corners(cf);
-    undo_corners(cg);
+    list_if_crossing_anew(mesh, before, face_corners_[f.idx], face_normals_[f.idx], face_corners_[g.idx],
+                          face_normals_[g.idx]);
     return true;
   });
+  return send_back(mesh, before);
+}
+
+bool CrossingGuard::note_face(const SurfaceMesh& mesh, const PlacesBefore& before, Face f, size_t key) {
+  const Point* pos = mesh.positions().data();
+  const std::array<std::uint32_t, 3> c = corners(mesh, f);
+  face_corners_[key] = c;
+  const Point p[3] = {pos[c[0]], pos[c[1]], pos[c[2]]};
+  face_normals_[key] = normal_of(p);
+  face_degenerate_[key] = geometry::collinear(p[0], p[1], p[2]);
+  moved_face_[key] = p[0] != before[c[0]] || p[1] != before[c[1]] || p[2] != before[c[2]];
+  return moved_face_[key];
+}
+
+void CrossingGuard::list_if_crossing_anew(const SurfaceMesh& mesh, const PlacesBefore& before,
+                                          const std::array<std::uint32_t, 3>& cf, const Vec3& nf,
+                                          const std::array<std::uint32_t, 3>& cg, const Vec3& ng) {
+  const Point* pos = mesh.positions().data();
+  const Point pf[3] = {pos[cf[0]], pos[cf[1]], pos[cf[2]]}, pg[3] = {pos[cg[0]], pos[cg[1]], pos[cg[2]]};
+  if (surely_apart(pf, cf, nf, pg, cg, ng) || !geometry::faces_intersect(pf, cf, pg, cg)) return;
+  if (crossed_before(before, cf, cg)) return;  // not the moves' doing
+  list_moved_corners(mesh, before, cf);
+  list_moved_corners(mesh, before, cg);
+}
+
+void CrossingGuard::list_moved_corners(const SurfaceMesh& mesh, const PlacesBefore& before,
+                                       const std::array<std::uint32_t, 3>& c) {
+  for (std::uint32_t w : c)
+    if (mesh.positions()[w] != before[w]) to_undo_.push_back(Vertex(w));
+}
+
+size_t CrossingGuard::send_back(SurfaceMesh& mesh, const PlacesBefore& before, bool stop_when_spent) {
   size_t undone = 0;
   for (;;) {
     to_check_.clear();
     for (const Vertex w : to_undo_) {
-      if (!moved(w.idx)) continue;  // listed twice, or back already
+      if (mesh.position(w) == before[w.idx]) continue;  // listed twice, or back already
       mesh.position(w) = before[w.idx];
       grid_.insert_fan(mesh, w);
       to_check_.push_back(w);
       ++undone;
     }
-    if (to_check_.empty()) break;
+    if (to_check_.empty() || (stop_when_spent && spent_)) break;
     // The fans of the vertices sent back, against their neighbours' new places.
     to_undo_.clear();
     for (const Vertex v : to_check_) {
       const Crossing crossing = fan_crossing(mesh, v, &before);
+      if (stop_when_spent && spent_) break;  // (found, but not shown)
       if (!crossing.found) continue;
-      undo_corners(candidates_[crossing.triangle].ids);
-      if (crossing.face.is_valid()) undo_corners(corners(mesh, crossing.face));
+      // A region leaves a degenerate triangle (no face crossed) to fix_bad_faces, as the sweep does.
+      if (in_region_ && !crossing.face.is_valid()) continue;
+      list_moved_corners(mesh, before, candidates_[crossing.triangle].ids);
+      if (crossing.face.is_valid()) list_moved_corners(mesh, before, corners(mesh, crossing.face));
     }
   }
   return undone;

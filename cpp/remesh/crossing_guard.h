@@ -21,6 +21,33 @@
 
 namespace adasculpt::remesh {
 
+// The places of the vertices before a batch of moves (CrossingGuard::undo_crossing_moves): an
+// array per vertex slot, or (a region's relaxation) the current places but for the moved
+// vertices, whose places before are kept by their position in a list (`at`: per vertex slot,
+// current only where the list agrees; 4 bytes a slot where a copy of every place took 24).
+class PlacesBefore {
+ public:
+  using Vertex = mesh::Vertex;
+  explicit PlacesBefore(const std::vector<Point>& per_slot) : per_slot_(per_slot.data()) {}
+  PlacesBefore(const Point* current, const std::vector<std::uint32_t>& at, const std::vector<Vertex>& listed,
+               const std::vector<Point>& listed_before)
+      : current_(current), at_(at.data()), listed_(listed.data()), listed_before_(listed_before.data()),
+        n_listed_(listed.size()) {}
+  const Point& operator[](std::uint32_t v) const {
+    if (per_slot_) return per_slot_[v];
+    const std::uint32_t i = at_[v];
+    return i < n_listed_ && listed_[i].idx == v ? listed_before_[i] : current_[v];
+  }
+
+ private:
+  const Point* per_slot_ = nullptr;
+  const Point* current_ = nullptr;
+  const std::uint32_t* at_ = nullptr;
+  const Vertex* listed_ = nullptr;
+  const Point* listed_before_ = nullptr;
+  size_t n_listed_ = 0;
+};
+
 class CrossingGuard {
  public:
   using SurfaceMesh = mesh::SurfaceMesh;
@@ -52,6 +79,12 @@ class CrossingGuard {
     kept_face_slots_ = mesh.faces_size();
   }
   void resume(const SurfaceMesh& mesh);
+  // The same over the listed faces only (region_guard.cpp): a sculpting frame's region and the
+  // ring of faces around it, at a cost proportional to them; one grid through the frame's
+  // passes. The grid is never renewed: a spent budget refuses the frame's remaining operations.
+  void start_region(const SurfaceMesh& mesh, const std::vector<Face>& faces);
+  // Sizes the per-slot arrays the region guard uses to the mesh's slots (Remesher::reserve_scratch).
+  void reserve_region(const SurfaceMesh& mesh);
   bool active() const { return active_ && grid_.built(); }
   void fan_changed(const SurfaceMesh& mesh, Vertex v) {  // after a move, split or collapse at v
     if (active_) grid_.insert_fan(mesh, v);
@@ -84,6 +117,10 @@ class CrossingGuard {
   // crossings between faces that did not move, which the moves did not make). Rebuilds the
   // grid and leaves the guard active. Returns the vertices sent back.
   size_t undo_crossing_moves(SurfaceMesh& mesh, const std::vector<Point>& before);
+  // The same for a region (region_guard.cpp), after start_region over `faces` and the passes that
+  // followed it (the same list: the faces they deleted leave it here). `before` must hold the
+  // place of every corner of the listed faces.
+  size_t undo_region_crossing_moves(SurfaceMesh& mesh, const PlacesBefore& before, std::vector<Face>& faces);
 
  private:
   struct Candidate {  // a triangle an operation would create, or a face that moved
@@ -100,7 +137,7 @@ class CrossingGuard {
   // with a corner `replaced` (rewritten by the operation) and skip0, skip1.
   // With `before` (positions per vertex slot), a pair that crossed there too is passed over.
   Crossing first_crossing(const SurfaceMesh& mesh, const Candidate* ts, size_t n, Vertex replaced0, Vertex replaced1,
-                          Face skip0, Face skip1, const std::vector<Point>* before = nullptr);
+                          Face skip0, Face skip1, const PlacesBefore* before = nullptr);
   // The triangles collapsing h would create, into candidates_ (survivor: h's to_vertex, at target).
   void collapse_candidates(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   // Whether a new triangle (box t_lo, t_hi) that crosses g (corners q) keeps a crossing of g that
@@ -109,7 +146,7 @@ class CrossingGuard {
   bool crossed_already(const SurfaceMesh& mesh, Face g, const Point q[3], const std::array<std::uint32_t, 3>& ids,
                        const Point& t_lo, const Point& t_hi, Vertex replaced0, Vertex replaced1, Face skip0,
                        Face skip1) const;
-  Crossing fan_crossing(const SurfaceMesh& mesh, Vertex v, const std::vector<Point>* before = nullptr);  // fills candidates_
+  Crossing fan_crossing(const SurfaceMesh& mesh, Vertex v, const PlacesBefore* before = nullptr);  // fills candidates_
   // Whether w's fan as the operation first_crossing checks would leave it (w's faces but those it
   // replaces, with the new candidates) surely crosses nowhere (geometry/embedded_fan.h). Where a
   // collapse's survivor stays, its current place must be the target (as collapse_crosses asks).
@@ -142,10 +179,11 @@ class CrossingGuard {
   std::vector<Shape> shapes_;
   std::vector<std::pair<std::uint32_t, bool>> fans_after_;  // first_crossing: shared_fan_embedded's answers
   std::vector<Face> near_;
-  std::vector<std::uint8_t> moved_face_;  // undo_crossing_moves: per face slot
-  std::vector<std::array<std::uint32_t, 3>> face_corners_;  // undo_crossing_moves: per face slot
-  std::vector<Vec3> face_normals_;                          // undo_crossing_moves: per face slot
-  std::vector<std::uint8_t> face_degenerate_;               // undo_crossing_moves: per face slot
+  // undo_crossing_moves: per face slot (a region's: per position in its list)
+  std::vector<std::uint8_t> moved_face_;
+  std::vector<std::array<std::uint32_t, 3>> face_corners_;
+  std::vector<Vec3> face_normals_;
+  std::vector<std::uint8_t> face_degenerate_;
   enum : std::uint8_t { kUnknown, kEmbedded, kNotShown };
   std::vector<std::uint8_t> fan_embedded_;  // undo_crossing_moves: per vertex slot, at the current positions
   size_t work_left_ = 0;  // pairs of faces the current grid may still look at (start())
@@ -158,6 +196,24 @@ class CrossingGuard {
   void reset_budget();              // start() and resume(): renewals, spent_, contain_inherited_
   bool renew_budget(const SurfaceMesh& mesh);  // build_grid, or (none left) spent_
   std::vector<Vertex> to_check_, to_undo_;
+  // undo_crossing_moves' rounds: the vertices in to_undo_ go back, then the corners of the pairs
+  // their fans now make, until none is left (or, with stop_when_spent, until the budget is
+  // spent: a spent grid finds a crossing everywhere). Returns the vertices sent back.
+  size_t send_back(SurfaceMesh& mesh, const PlacesBefore& before, bool stop_when_spent = false);
+  void list_moved_corners(const SurfaceMesh& mesh, const PlacesBefore& before,
+                          const std::array<std::uint32_t, 3>& c);  // into to_undo_
+  // f's corners, normal, degeneracy and whether it moved, into the sweep's arrays at `key` (its
+  // slot, or its position in a region's list); returns whether it moved.
+  bool note_face(const SurfaceMesh& mesh, const PlacesBefore& before, Face f, size_t key);
+  // The sweep's test of a pair (corners, normals): when the faces cross now but not at `before`,
+  // their moved corners go into to_undo_.
+  void list_if_crossing_anew(const SurfaceMesh& mesh, const PlacesBefore& before,
+                             const std::array<std::uint32_t, 3>& cf, const Vec3& nf,
+                             const std::array<std::uint32_t, 3>& cg, const Vec3& ng);
+  bool in_region_ = false;            // started by start_region
+  bool region_out_of_scale_ = false;  // start_region: the faces span more than the grid's float boxes resolve
+  size_t region_faces_ = 0;           // start_region: the list's length
+  double grid_cell_ = 0;              // start_region: its cells' size
 };
 
 }  // namespace adasculpt::remesh

@@ -101,6 +101,11 @@ void Remesher::reserve_scratch() {
   mesh::resize_scratch(m.valence_excess, nv);
   mesh::resize_scratch(m.kappa, nv);
   mesh::resize_scratch(m.kappa_known, nv, std::uint8_t(0));
+  if (m.region_crossing_guard) {  // (its per-slot arrays: none while it is off)
+    mesh::resize_scratch(m.region_face_listed, nf, std::uint8_t(0));
+    mesh::resize_scratch(m.scope_at, nv);
+    m.crossing_guard.reserve_region(m.mesh);
+  }
 }
 
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
@@ -125,7 +130,7 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   stats.flips = flip_edges();
   stats.flips += flip_for_angles(kPoorAngleDeg * M_PI / 180.0);
   const bool guarded = do_project && has_reference;
-  if (guarded || whole_mesh) remember_positions();
+  if (guarded || whole_mesh || region_crossing_guard) remember_positions();  // (for undo_crossing_moves)
   keep_fan_shapes = guarded;
   relax_vertices();
   keep_fan_shapes = false;
@@ -274,7 +279,10 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
     m.compute_sizing_from_current_surface(m.scope_vertices);
   }
   m.region_calls_since_sizing = (m.region_calls_since_sizing + 1) % kRegionSizingInterval;
+  if (m.region_watch) m.region_watch(m.mesh, false);
   IterationStats stats = m.run_iteration(false);
+  m.crossing_guard.stop();
+  if (m.region_watch) m.region_watch(m.mesh, true);
   region.clear();
   for (Vertex v : m.scope_vertices)
     if (!m.mesh.is_deleted(v)) {
@@ -283,6 +291,9 @@ IterationStats Remesher::iterate_region(std::vector<Vertex>& region) {
     }
   return stats;
 }
+
+void Remesher::set_region_crossing_guard(bool on) { impl_->region_crossing_guard = on; }
+void Remesher::watch_region_iterations(RegionWatch watch) { impl_->region_watch = std::move(watch); }
 
 void Remesher::keep_guard_grid() { impl_->keep_guard_grid = true; }
 

@@ -10,6 +10,7 @@
 // A Remesher keeps its reference surface (AABB tree, curvature, sizing) alive between calls so
 // that interactive use pays only for what changed; remesh() is the one-shot batch entry.
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -91,6 +92,14 @@ class Remesher {
   // curvature and sizing are taken from the current surface (the sculpting frame).
   // The vertex list is updated in place: removed vertices leave, new vertices join.
   IterationStats iterate_region(std::vector<Vertex>& region);
+  // On: no region operation creates a crossing of two triangles (region_guard.cpp). Off by
+  // default (the region iterations as they were): a 10k-vertex pull's frames cost 1.6x the
+  // instructions (median; 2.8x the largest) with it.
+  void set_region_crossing_guard(bool on);
+  // Called with the mesh right before (done false) and right after (done true) each region
+  // iteration's passes: tests count the crossings an iteration creates (nullptr: none).
+  using RegionWatch = std::function<void(const SurfaceMesh& mesh, bool done)>;
+  void watch_region_iterations(RegionWatch watch);
   // The next iterate_region measures the sizing of its whole scope again (it does every few
   // calls; a large scope, measured a slice per call, never all at once once measured): a caller
   // with a frame budget can give that frame's other work less.
@@ -148,7 +157,8 @@ class Remesher {
   // terms, valences, curvature) to the mesh's slots now, zero-filled, so that a sculpting frame
   // touches only its region's entries: sized in the first frame that needs them, they cost a
   // stroke on 1.1M triangles tens of milliseconds of allocation and page faults (issue 18). A
-  // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch).
+  // session calls it with each new mesh; the arrays outlive the remesher (RemeshScratch). The
+  // region crossing guard's arrays too, when it is on (set_region_crossing_guard first).
   void reserve_scratch();
   // Batch use (remesh()): the caller promises that between this remesher's calls nothing edits
   // the mesh but a garbage collection. The crossing guard's grid then lives from one iterate() to

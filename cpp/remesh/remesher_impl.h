@@ -414,14 +414,30 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<FanShape> fan_shapes;
   void remember_positions();
   size_t project_vertices_guarded();
-  // ---- no new self-intersections (crossing_guard.h), whole-mesh iterations only: a sculpting
-  // frame's region would need the faces around it, and its budget has no room for them (the
-  // frame path pays a test of active() per operation).
+  // ---- no new self-intersections (crossing_guard.h). A region iteration's guard holds the
+  // region's faces and the ring around them (region_faces.cpp, region_guard.cpp).
   mutable CrossingGuard crossing_guard;  // (its tests keep scratch)
   std::vector<Point> before_move;        // per vertex slot: relaxed_from, for undo_crossing_moves
   void start_crossing_guard() {
-    if (whole_mesh) crossing_guard.resume(mesh);
+    if (whole_mesh) {
+      crossing_guard.resume(mesh);
+      return;
+    }
+    if (!region_crossing_guard) return;
+    collect_region_faces();
+    crossing_guard.start_region(mesh, region_faces);
   }
+  // Remesher::set_region_crossing_guard. Off by default: the dragon pull's frames cost 1.6x
+  // (median) to 2.8x (max) the instructions with it (region_guard.cpp), above issue 18's budget.
+  bool region_crossing_guard = false;
+  Remesher::RegionWatch region_watch;
+  // The faces of the scope's vertices and those of their neighbours outside it: every face a
+  // region operation rewrites, and the ring next to the triangles it creates.
+  std::vector<Face> region_faces;
+  std::vector<std::uint8_t> region_face_listed;  // per face slot, all 0 between calls
+  std::vector<std::uint32_t> scope_at;           // per vertex slot: its index in scope_vertices (when it is there)
+  void collect_region_faces();
+  void undo_region_crossing_moves();
   // Batch use (Remesher::keep_guard_grid): the grid lives from one call to the next, suspended,
   // unless the next whole-mesh split pass is expected to split more than one edge per this many
   // faces (expected_splits: the last pass's count, unknown before the first; see run_iteration).

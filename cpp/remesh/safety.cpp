@@ -143,7 +143,11 @@ size_t Remesher::Impl::project_vertices_guarded() {
 }
 
 void Remesher::Impl::undo_crossing_moves() {
-  if (!whole_mesh || relaxed_from.size() != scope_vertices.size()) return;
+  if (relaxed_from.size() != scope_vertices.size()) return;
+  if (!whole_mesh) {
+    if (region_crossing_guard) undo_region_crossing_moves();
+    return;
+  }
   mesh::resize_scratch(before_move, mesh.vertices_size());
   const Point* pos = mesh.positions().data();
   std::copy(pos, pos + mesh.vertices_size(), before_move.begin());  // (masked vertices stay)
