@@ -49,6 +49,7 @@ struct Session::Impl {
   bool has_mesh = false;
   double diagonal = 0;
   remesh::RemeshOptions options;  // adaptive; epsilon/min/max/features resolved to absolute values
+  bool guard_crossings = false;   // set_settings; kept through loads (a preference, not a length)
 
   // The history as a log of slot changes (undo_log.h). The mesh is never compacted while it holds
   // steps (they refer to slots); step_touched gathers the current step's touched vertices across
@@ -135,6 +136,7 @@ struct Session::Impl {
   void make_remesher() {
     remesher.reset();  // first: a remesher takes its arrays off the mesh when it goes
     remesher = std::make_unique<remesh::Remesher>(mesh, options);
+    remesher->set_region_crossing_guard(guard_crossings);  // before its scratch is reserved
     remesher->log_deleted_faces(&changes.touched_faces);
   }
   void drop_remesher() {
@@ -431,6 +433,13 @@ void Session::set_settings(const nlohmann::json& j) {
   for (int i = 0; i < 3; ++i)
     if (*given[i]) s.relative[i] = (*given[i])->percent;
   if (s.remesher) s.remesher->set_options(o);
+  if (p.guard_crossings && *p.guard_crossings != s.guard_crossings) {
+    s.guard_crossings = *p.guard_crossings;
+    if (s.remesher) {
+      s.remesher->set_region_crossing_guard(s.guard_crossings);
+      s.remesher->reserve_scratch();  // the guard's per-slot arrays, here rather than in a stroke
+    }
+  }
   if (p.features && s.options.feature_angle_deg > 0 && s.has_mesh && !s.grabbing && !s.brushing && !s.masking)
     s.lend_mirror_map_once();
 }
@@ -441,6 +450,7 @@ nlohmann::json Session::settings() const {
           {"min_length", s.options.min_length},
           {"max_length", s.options.max_length},
           {"features", s.options.feature_angle_deg},
+          {"guard_crossings", s.guard_crossings},
           {"diagonal", s.diagonal}};
 }
 

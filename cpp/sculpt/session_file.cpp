@@ -223,7 +223,7 @@ json to_json(const MaskOp& op) {
 
 SettingsPatch parse_settings(const json& s, const std::string& ctx) {
   if (!s.is_object()) throw std::invalid_argument(ctx + "must be an object");
-  check_keys(s, ctx, {"epsilon", "min_length", "max_length", "features"});
+  check_keys(s, ctx, {"epsilon", "min_length", "max_length", "features", "guard_crossings"});
   SettingsPatch p;
   if (s.contains("epsilon")) p.epsilon = length(s["epsilon"], ctx, "epsilon");
   if (s.contains("min_length")) p.min_length = length(s["min_length"], ctx, "min_length");
@@ -233,6 +233,10 @@ SettingsPatch parse_settings(const json& s, const std::string& ctx) {
     if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0 || f.get<double>() > 180)
       fail(ctx, "features", "must be an angle in degrees between 0 and 180");
     p.features = f.get<double>();
+  }
+  if (s.contains("guard_crossings")) {
+    if (!s["guard_crossings"].is_boolean()) fail(ctx, "guard_crossings", "must be true or false");
+    p.guard_crossings = s["guard_crossings"].get<bool>();
   }
   return p;
 }
@@ -252,6 +256,7 @@ json to_json(const SettingsPatch& s) {
   put("min_length", s.min_length);
   put("max_length", s.max_length);
   if (s.features) j["features"] = *s.features;
+  if (s.guard_crossings) j["guard_crossings"] = *s.guard_crossings;
   return j;
 }
 

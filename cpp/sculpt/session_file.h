@@ -53,6 +53,9 @@ using LengthSetting = remesh::LengthSpec;
 struct SettingsPatch {
   std::optional<LengthSetting> epsilon, min_length, max_length;
   std::optional<double> features;  // degrees, 0 = off
+  // Sculpting's remeshing checks that it creates no crossing triangles (Remesher::
+  // set_region_crossing_guard): safer pinches and creases, frames about 1.6x the cost.
+  std::optional<bool> guard_crossings;
 };
 // Throws std::invalid_argument "<context>'epsilon' must be ..." (context e.g. "settings: ").
 SettingsPatch parse_settings(const nlohmann::json& s, const std::string& context = "settings: ");

@@ -11,6 +11,7 @@
 #include "geometry/quality.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "sculpt/session_file.h"
 #include "test_build.h"
 
 using namespace adasculpt;
@@ -91,6 +92,30 @@ TEST(SculptSession, SettingsAcceptPercentAndNameBadFields) {
   }
   EXPECT_THROW(s.set_settings({{"min_length", 1.0}, {"max_length", 0.5}}), std::invalid_argument);
   EXPECT_EQ(s.settings()["max_length"].get<double>(), 0.3);  // unchanged after an error
+}
+
+// guard_crossings switches the region crossing guard of strokes and grabs (RemeshRegionGuard.*
+// tests what it does); a preference, so a load keeps it, and session files carry it.
+TEST(SculptSession, GuardCrossingsIsASettingKeptThroughLoads) {
+  sculpt::Session s;
+  s.load(mesh::make_icosphere(2));
+  EXPECT_FALSE(s.settings()["guard_crossings"].get<bool>());
+  s.set_settings({{"guard_crossings", true}});
+  EXPECT_TRUE(s.settings()["guard_crossings"].get<bool>());
+  try {
+    s.set_settings({{"guard_crossings", 1}, {"features", 30}});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'guard_crossings'"), std::string::npos);
+  }
+  EXPECT_EQ(s.settings()["features"].get<double>(), 0);  // nothing changed
+  drag(s, Point(0, 0, 1), 0.1, 0.7, translate(Vec3(0, 0, 0.3)), 4);  // a remesher made with the guard
+  EXPECT_NO_THROW(s.mesh().validate());
+  s.load(mesh::make_icosphere(3));
+  EXPECT_TRUE(s.settings()["guard_crossings"].get<bool>());
+  const sculpt::SettingsPatch p = sculpt::parse_settings({{"guard_crossings", false}});
+  ASSERT_TRUE(p.guard_crossings.has_value());
+  EXPECT_EQ(sculpt::to_json(p), nlohmann::json({{"guard_crossings", false}}));
 }
 
 TEST(SculptSession, UndoReturnsTheExactInputRedoTheExactResult) {
