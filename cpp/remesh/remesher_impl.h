@@ -406,11 +406,12 @@ struct Remesher::Impl : RemeshScratch {
   void start_crossing_guard() {
     if (whole_mesh) crossing_guard.resume(mesh);
   }
-  // Batch use (Remesher::keep_guard_grid): the grid lives from one call to the next, suspended.
+  // Batch use (Remesher::keep_guard_grid): the grid lives from one call to the next, suspended,
+  // unless the next whole-mesh split pass is expected to split more than one edge per this many
+  // faces (expected_splits: the last pass's count, unknown before the first; see run_iteration).
   bool keep_guard_grid = false;
-  // Whether a whole-mesh split pass has run: the first refines the input wholesale, unchecked
-  // (see run_iteration); every later one is checked.
-  bool input_refined = false;
+  static constexpr size_t kSplitsPerFaceToRebuild = 8;
+  size_t expected_splits = SIZE_MAX;
   void end_crossing_guard() {
     if (keep_guard_grid)
       crossing_guard.suspend(mesh);
