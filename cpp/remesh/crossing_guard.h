@@ -95,6 +95,10 @@ class CrossingGuard {
   // when both_ends_move) would create a triangle that crosses the surface or is degenerate.
   bool collapse_crosses(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move);
   bool flip_crosses(const SurfaceMesh& mesh, Edge e);
+  // Whether splitting e at p would. Even at the midpoint: it lies off the edge by rounding, and
+  // where a face touches the edge up to rounding (two meshed sides of a flat part of the input
+  // folded onto each other) the halves can cross it.
+  bool split_crosses(const SurfaceMesh& mesh, Edge e, const Point& p);
   // The test collapse_crosses passes over the pairs that share w with: whether w's fan as that
   // collapse would leave it is surely embedded (geometry/embedded_fan.h). For the tests.
   bool fan_embedded_after_collapse(const SurfaceMesh& mesh, Halfedge h, const Point& target, bool both_ends_move,

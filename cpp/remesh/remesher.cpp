@@ -110,13 +110,17 @@ void Remesher::reserve_scratch() {
 
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;
-  // A kept grid must follow the splits (they report their fans; nothing checks them), but when
+  // A kept grid must follow the splits (they report their fans, and while it is on each is
+  // checked: split_with_mirror), but when
   // the split pass refines the mesh wholesale, as the first one mostly does (dragon.off: 60k
   // splits on 100k faces, 207k at epsilon 0.01 %; bunny.off 4,940 on 70k), a build after the
   // splits costs less than inserting every new face (keeping it made the dragon at epsilon
   // 0.01 % 12 % slower and 9 % larger). Later passes split a few hundred edges. (The sizing
   // field's estimate of the output predicts the first pass badly: the dragon's grows by 14k
-  // vertices through 60k splits and 44k collapses.)
+  // vertices through 60k splits and 44k collapses.) Checking the splits of every pass after the
+  // first (the dragon's second, 1,794 splits, runs without the grid) was cheaper on the shared
+  // meshes but put cgal/ChineseDragon-10kv at epsilon 0.01 %, features 45, from 8.8 s of CPU over
+  // the sweep's 10 s cap: the long splits of a pass without the grid stay unchecked.
   if (keep_guard_grid && whole_mesh) {
     if (expected_splits < mesh.n_faces() / kSplitsPerFaceToRebuild)
       start_crossing_guard();

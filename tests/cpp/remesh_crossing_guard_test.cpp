@@ -20,6 +20,7 @@
 #include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/crossing_guard.h"
+#include "crossing_guard_test_util.h"
 #include "remesh/remesher.h"
 
 using namespace adasculpt;
@@ -30,6 +31,8 @@ using Points = std::vector<std::array<double, 3>>;
 using Triangles = std::vector<std::array<std::uint32_t, 3>>;
 
 namespace {
+
+using test::roof;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -47,21 +50,6 @@ SurfaceMesh dented_fan(bool obstacle) {
     p.push_back({-0.3, -0.1, -0.15});
     p.push_back({-0.3, 0.1, -0.15});
     t.push_back({7, 8, 9});
-  }
-  return mesh::build_from_triangles(p, t);
-}
-
-// A roof: the ridge a = 0, b = 1 at z = 0.5, the eaves c = 2 and d = 3 at z = 0. Flipping the
-// ridge makes a valley along c-d. With `obstacle`, a flat triangle at z = 0.25 along the ridge
-// (|y| <= 0.2, under the roof) that the valley's triangles cut (they are below 0.25 near x = 1).
-SurfaceMesh roof(bool obstacle) {
-  Points p = {{0, 0, 0.5}, {2, 0, 0.5}, {1, 1, 0}, {1, -1, 0}};
-  Triangles t = {{0, 1, 2}, {1, 0, 3}};
-  if (obstacle) {
-    p.push_back({0.4, 0, 0.25});
-    p.push_back({1.6, -0.2, 0.25});
-    p.push_back({1.6, 0.2, 0.25});
-    t.push_back({4, 5, 6});
   }
   return mesh::build_from_triangles(p, t);
 }
