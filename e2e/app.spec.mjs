@@ -5,7 +5,7 @@ import { test, expect } from '@playwright/test';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { watchErrors, open, stats, save, sameAs, snapshotCanvas } from './helpers.mjs';
+import { watchErrors, open, stats, save, sameAs, snapshotCanvas, stroke } from './helpers.mjs';
 
 const root = path.join(path.dirname(fileURLToPath(import.meta.url)), '..');
 const shot = (page, name) => page.screenshot({ path: path.join(root, 'test-results', `${name}.png`) });
@@ -171,6 +171,19 @@ test('epsilon in the panel + remesh whole mesh changes the resolution', async ({
   await eps.press('Enter');
   await page.getByText('remesh whole mesh').click();
   await expect.poll(async () => (await stats(page)).vertices, { timeout: 30_000 }).toBeLessThan(fine.vertices * 0.7);
+});
+
+test('no self-crossings in the panel turns the region crossing guard of the core on; a Pull still sculpts', async ({ page }) => {
+  await open(page);
+  expect((await stats(page)).settings.guardCrossings).toBe(false);
+  await page.locator('.lil-controller', { hasText: 'no self-crossings' }).locator('input').check();
+  await expect.poll(async () => (await stats(page)).settings.guardCrossings).toBe(true);
+  await save(page, 'before');
+  await stroke(page, { dy: -0.6 });
+  expect(await sameAs(page, 'before')).toBe(false);
+  const after = await stats(page);
+  expect(after.settings.guardCrossings).toBe(true);
+  expect(after.meanMinAngle).toBeGreaterThan(35);
 });
 
 // The embed example and <adasculpt-viewer>: e2e/embed.spec.mjs.

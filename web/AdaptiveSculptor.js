@@ -31,13 +31,13 @@ import {
 } from './settings.js';
 import { FEEL_DEFAULTS, FEEL_KEYS, checkFeel, detailLength } from './brush-feel.js';
 
-const CORE_KEYS = ['epsilon', 'minLength', 'maxLength', 'features'];
+const CORE_KEYS = ['epsilon', 'minLength', 'maxLength', 'features', 'guardCrossings'];
 const TOOL_KEYS = ['tool', 'radius', 'strength', 'symmetry', 'handleRadius', 'roiRadius'];
 const STROKE_LOG_MAX = 100000;
 
 export class AdaptiveSculptor extends THREE.EventDispatcher {
   // mesh: a THREE.Mesh with its own (indexed or not) BufferGeometry; camera: the camera the pointer
-  // looks through. Options: wasmUrl, epsilon, minLength, maxLength, features, tool, radius,
+  // looks through. Options: wasmUrl, epsilon, minLength, maxLength, features, guardCrossings, tool, radius,
   // strength, symmetry, handleRadius, roiRadius, keyTarget (keyboard shortcuts), controls (disabled
   // during a stroke), wireframe (keep a wireframe geometry too), grabPreview, module.
   static async create(mesh, camera, options = {}) {
@@ -228,7 +228,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
     const s = this.session.hasMesh() ? this.session.settings() : null;
     return {
       epsilon: s ? s.epsilon : null, minLength: s ? s.minLength : null, maxLength: s ? s.maxLength : null,
-      features: s ? s.features : null, diagonal: this._diagonal,
+      features: s ? s.features : null, guardCrossings: s ? s.guardCrossings : null, diagonal: this._diagonal,
       tool: this._tool, radius: this.radius, strength: this._strength, symmetry: this._symmetry,
       handleRadius: this.handleRadius, roiRadius: this.roiRadius,
       ...this._feel, constantDetail: (this._feel.constantDetail / 100) * this._diagonal,
@@ -254,7 +254,7 @@ export class AdaptiveSculptor extends THREE.EventDispatcher {
       else throw new Error(`setParams: unknown parameter '${k}'`);
     }
     if (Object.keys(core).length) {
-      if (!this.session.hasMesh()) throw new Error('setParams: epsilon, minLength, maxLength and features need a mesh');
+      if (!this.session.hasMesh()) throw new Error('setParams: epsilon, minLength, maxLength, features and guardCrossings need a mesh');
       this.session.setSettings(core);
     }
     Object.assign(this._pct, pct);

@@ -65,6 +65,8 @@ export interface RemeshParams {
   maxLength?: Length;
   /** Feature-edge dihedral angle in degrees; 0 = off (default). */
   features?: number;
+  /** Strokes and grabs remesh without creating crossing triangles (hard pinches and creases); frames cost about 1.6x. Default false; kept through loads. */
+  guardCrossings?: boolean;
 }
 
 /** The tools' settings. Defaults: `tool 'draw'` (the app: `'pull'`), radius `"5%"`, strength 0.5, symmetry `'x'`, handle `"4%"`, region `"15%"`. */
@@ -86,6 +88,7 @@ export interface CoreSettings {
   minLength: number;
   maxLength: number;
   features: number;
+  guardCrossings: boolean;
   /** Bounding-box diagonal of the mesh as loaded (what "x%" lengths are relative to). */
   diagonal: number;
 }
@@ -96,6 +99,7 @@ export interface SculptorParams {
   minLength: number | null;
   maxLength: number | null;
   features: number | null;
+  guardCrossings: boolean | null;
   diagonal: number;
   tool: ToolName;
   radius: number;

@@ -51,7 +51,7 @@ export async function createSculptApp(container, options = {}) {
   const pctOf = (v) => lengthToPercent(v, 1, 'default');
   const state = {
     ...APP_STATE,
-    epsilon: pctOf(core.epsilon), minLength: pctOf(core.minLength), maxLength: pctOf(core.maxLength), features: core.features,
+    epsilon: pctOf(core.epsilon), minLength: pctOf(core.minLength), maxLength: pctOf(core.maxLength), features: core.features, guardCrossings: false,
     tool: sculptor.tool, brushRadius: 0, brushStrength: 0, symmetry: TOOL_DEFAULTS.symmetry, handleRadius: 0, roiRadius: 0,
     sample: Object.keys(SAMPLES).find((k) => SAMPLES[k] === opts.model) || 'sphere',
   };
@@ -119,6 +119,7 @@ export async function createSculptApp(container, options = {}) {
     state.minLength = pct(s.minLength);
     state.maxLength = pct(s.maxLength);
     state.features = s.features;
+    state.guardCrossings = s.guardCrossings;
     readToolParams();
     if (panel) panel.refresh();
     return s;
@@ -364,6 +365,7 @@ export async function createSculptApp(container, options = {}) {
       exportMesh: (fmt) => guard(() => download(session.exportMesh(fmt), exportName(fmt))),
       settings: () => guard(() => api.setParams({
         epsilon: `${state.epsilon}%`, minLength: `${state.minLength}%`, maxLength: `${state.maxLength}%`, features: state.features,
+        guardCrossings: state.guardCrossings,
       })),
       remesh: () => api.remesh({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),
       floodFill: () => api.floodFill({ iterations: state.iterations }).catch((e) => toaster.show(e.message, 'error')),

@@ -28,6 +28,8 @@ export function createPanel(parent, state, actions) {
   remesh.add(state, 'minLength', 0.01, 5, 0.01).name('min length (%)').onFinishChange(settingsChanged);
   remesh.add(state, 'maxLength', 0.5, 20, 0.1).name('max length (%)').onFinishChange(settingsChanged);
   remesh.add(state, 'features', 0, 90, 1).name('features (deg, 0 off)').onFinishChange(settingsChanged);
+  // Sculpting's remeshing checks each operation against crossing the surface: safer hard pinches, slower frames.
+  remesh.add(state, 'guardCrossings').name('no self-crossings (slower)').onChange(settingsChanged);
   remesh.add(state, 'iterations', 1, 20, 1).name('iterations');
   const remeshButton = remesh.add({ run: () => actions.remesh() }, 'run').name('remesh whole mesh');
 

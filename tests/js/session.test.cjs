@@ -84,6 +84,10 @@ test('settings round-trip, absolute and percent', { skip }, () => {
     assert.ok(Math.abs(st.epsilon - 0.001 * st.diagonal) < 1e-12);
     assert.strictEqual(st.maxLength, 0.2);
     assert.strictEqual(st.features, 30);
+    s.setSettings({ guardCrossings: true });
+    assert.strictEqual(s.settings().guardCrossings, true);
+    assert.throws(() => s.setSettings({ guardCrossings: 'yes' }), /guard_crossings/);
+    assert.strictEqual(s.settings().guardCrossings, true);
   });
 });
 
@@ -94,7 +98,8 @@ test('plain objects in and out: defaults, settings, stats, replay from an object
   const fromObject = withSession((s) => {
     s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
     const st = s.settings();
-    assert.deepStrictEqual(Object.keys(st).sort(), ['diagonal', 'epsilon', 'features', 'maxLength', 'minLength']);
+    assert.deepStrictEqual(Object.keys(st).sort(), ['diagonal', 'epsilon', 'features', 'guardCrossings', 'maxLength', 'minLength']);
+    assert.strictEqual(st.guardCrossings, false, 'the region crossing guard is off by default');
     assert.ok(Math.abs(st.epsilon - 0.0005 * st.diagonal) < 1e-12, 'the default epsilon is 0.05 % of the diagonal');
     const q = s.stats();
     for (const k of ['minAngleDeg', 'meanMinAngleDeg', 'valenceHistogram', 'lastFrame', 'canUndo']) assert.ok(k in q, k);
