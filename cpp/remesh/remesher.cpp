@@ -111,8 +111,8 @@ void Remesher::reserve_scratch() {
 IterationStats Remesher::Impl::run_iteration(bool do_project) {
   IterationStats stats;
   // A kept grid must follow the splits (they report their fans, and while it is on each is
-  // checked: split_with_mirror), but when
-  // the split pass refines the mesh wholesale, as the first one mostly does (dragon.off: 60k
+  // checked: split_with_mirror), but when the split pass refines the mesh wholesale, as the
+  // first one mostly does (dragon.off: 60k
   // splits on 100k faces, 207k at epsilon 0.01 %; bunny.off 4,940 on 70k), a build after the
   // splits costs less than inserting every new face (keeping it made the dragon at epsilon
   // 0.01 % 12 % slower and 9 % larger). Later passes split a few hundred edges. (The sizing

@@ -131,10 +131,10 @@ size_t Remesher::Impl::split_with_mirror(Edge e, bool far_from_reference) {
 
 // A fidelity split at the reference point nearest the midpoint (place_on_reference), kept only
 // when the crossing guard finds the new fan crossing nothing; else back at the midpoint, which
-// split_with_mirror found crossing nothing. On a part thinner than the edge the
-// placed point may push the fan through the other sheet (the CGAL elk, femur, diplodocus at
-// epsilon 0.01-0.05 %: 12 of 4,964 sweep runs with 3 to 27 new crossing pairs, every one from such
-// a split). split_long_edges starts the guard before the first of these splits.
+// split_with_mirror found crossing nothing. On a part thinner than the edge the placed point may
+// push the fan through the other sheet (the CGAL elk, femur, diplodocus at epsilon 0.01-0.05 %:
+// 11 of 4,964 sweep runs with 3 to 27 new crossing pairs came from such splits).
+// split_long_edges starts the guard before the first of these splits.
 void Remesher::Impl::split_placed_on_reference(Edge e, const Point& mid) {
   const Point placed = place_on_reference(e, mid);
   const Vertex v = split_edge(e, placed);

@@ -184,10 +184,7 @@ struct Session::Impl {
     component_box.reset(mesh.vertices_size());
     // The object holding the first vertex (a one-object scan: the mesh) measured here, with the
     // mesh, rather than walked by the first stroke on it.
-    for (mesh::Vertex v : mesh.vertices()) {
-      component_box.measure(mesh, v);
-      break;
-    }
+    if (mesh.n_vertices() > 0) component_box.measure(mesh, *mesh.vertices().begin());
     if (step_mark.size() < marks) step_mark.resize(marks, 0u);
     // Built here, with the mesh (a sort and a pass over its faces: ~0.3 s at 1.1M triangles), not
     // at the first stroke or press after the load, where it would be a hitch.
@@ -437,7 +434,8 @@ void Session::set_settings(const nlohmann::json& j) {
     s.guard_crossings = *p.guard_crossings;
     if (s.remesher) {
       s.remesher->set_region_crossing_guard(s.guard_crossings);
-      s.remesher->reserve_scratch();  // the guard's per-slot arrays, here rather than in a stroke
+      // The guard's per-slot arrays, here rather than in the next stroke (none when it goes off).
+      if (s.guard_crossings) s.remesher->reserve_scratch();
     }
   }
   if (p.features && s.options.feature_angle_deg > 0 && s.has_mesh && !s.grabbing && !s.brushing && !s.masking)
