@@ -105,6 +105,12 @@ class CrossingGuard {
                                    Vertex w);
   // After v moved: whether a face of its fan crosses the surface.
   bool fan_crosses(const SurfaceMesh& mesh, Vertex v) { return fan_crossing(mesh, v).found; }
+  // While active: appends the faces whose box (as last reported) touches [lo, hi], some of them
+  // deleted or moved since (callers test the current geometry); false when `budget` (cells and
+  // entries looked at) ran out first. The coverage check's nearest-face search (coverage.cpp).
+  bool gather_faces(const Point& lo, const Point& hi, std::vector<Face>& out, size_t& budget) {
+    return active() && grid_.gather(lo, hi, out, budget);
+  }
 
   // A crossing that the faces an operation replaces have already is excused (see above). With
   // `on`, only where those faces met the face crossed: the input's clean-up (Remesher::iterate)

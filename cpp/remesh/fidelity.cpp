@@ -187,6 +187,7 @@ size_t Remesher::Impl::undo_straying_moves() {
   for (size_t i = 0; i < scope_vertices.size(); ++i) {
     const Vertex v = scope_vertices[i];
     if (fidelity_moved[v.idx] == 0) continue;  // (deleted vertices never moved)
+    if (anchored(v) && !anchor_holds(v, mesh.position(v))) send_back(v);  // (coverage.cpp)
     for (Halfedge out : mesh.halfedges(v)) {
       const Vertex w = mesh.to_vertex(out);
       if (fidelity_moved[w.idx] != 0 && w.idx < v.idx) continue;  // seen from w

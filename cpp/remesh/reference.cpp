@@ -37,6 +37,7 @@ Remesher::Impl::~Impl() {
   mesh.remove_vertex_property(scope);
   mesh.remove_vertex_property(ref_hint);
   mesh.remove_vertex_property(segment_hint);
+  mesh.remove_vertex_property(anchor);
   mesh.remove_edge_property(feature);
 }
 
@@ -47,6 +48,7 @@ Remesher::Impl::Impl(SurfaceMesh& m, const RemeshOptions& o) : mesh(m), opt(o) {
   scope = mesh.vertex_property<std::uint8_t>("remesh:scope", kOutside);
   ref_hint = mesh.vertex_property<std::uint32_t>("remesh:hint", UINT32_MAX);
   segment_hint = mesh.vertex_property<std::uint32_t>("remesh:segment_hint", UINT32_MAX);
+  anchor = mesh.vertex_property<std::uint32_t>("remesh:anchor", UINT32_MAX);
   feature = mesh.edge_property<std::uint8_t>("remesh:feature", 0);
   mark_features();
 }
@@ -254,6 +256,8 @@ void Remesher::Impl::compute_sizing_from_current_surface(const std::vector<Verte
 }
 
 void Remesher::Impl::build_reference() {
+  // Anchors name points of the reference this replaces.
+  std::fill(anchor.vector().begin(), anchor.vector().end(), UINT32_MAX);
   std::vector<Vertex> all;
   all.reserve(mesh.n_vertices());
   for (Vertex v : mesh.vertices()) all.push_back(v);

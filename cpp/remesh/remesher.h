@@ -55,6 +55,9 @@ void check_options(const RemeshOptions& options);
 
 struct IterationStats {
   size_t splits = 0, collapses = 0, flips = 0;
+  // Whole-mesh adaptive iterations: vertices put back on reference points the surface had left
+  // (coverage.cpp), and how many of them were new (an edge split there; the others moved there).
+  size_t pins = 0, pin_splits = 0;
 };
 
 // What a whole-mesh remesh did beyond the mesh itself.
@@ -82,6 +85,8 @@ class Remesher {
   Remesher& operator=(const Remesher&) = delete;
 
   // One iteration over the whole mesh (projection as in the options).
+  // Adaptive: ends by putting vertices back on reference points the surface has left farther than
+  // the tolerance allows (coverage.cpp; IterationStats::pins).
   IterationStats iterate();
   // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
   // that no collapse or flip could remove to better places on the reference surface. Returns

@@ -161,6 +161,10 @@ struct Remesher::Impl : RemeshScratch {
   VertexProperty<std::uint8_t> scope;
   VertexProperty<std::uint32_t> ref_hint;  // last reference triangle a vertex projected to
   VertexProperty<std::uint32_t> segment_hint;  // last reference feature segment (feature vertices)
+  // A vertex the coverage check put on a reference point the surface had left (coverage.cpp):
+  // that point's index, else UINT32_MAX. Honoured while the fidelity check is on (whole-mesh
+  // adaptive iterations against a current reference; build_reference clears them).
+  VertexProperty<std::uint32_t> anchor;
   EdgeProperty<std::uint8_t> feature;      // feature or boundary edge
   // The sculpting mask (mesh/vertex_mask.h), looked up again by every call (a mask operation may
   // add it between calls): fully masked vertices stay outside every scope, so no pass moves them
@@ -269,6 +273,34 @@ struct Remesher::Impl : RemeshScratch {
   Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
   bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move) const;
   bool flip_keeps_fidelity(Vertex c, Vertex d) const;  // the new edge c-d of a flip
+
+  // ---- the other side of the fidelity check (coverage.cpp): reference points the surface left
+  // more than kCoverageLimit x the tolerance behind (a tip worn away iteration by iteration)
+  // get a vertex back on them (a vertex moved there or an edge split there), anchored to them.
+  size_t cover_reference_points(size_t* splits);  // returns the pins; *splits: how many split an edge
+  // An anchored vertex is never removed and moves only within the limit of its point, so that it
+  // keeps the point covered; within that it moves like any free vertex (a corner that never
+  // moved left 16-degree triangles around it on fandisk at the defaults).
+  bool anchored(Vertex v) const { return anchor[v] != UINT32_MAX && fidelity_tolerance() > 0; }
+  bool anchor_holds(Vertex v, const Point& p) const;
+  // 0: not pinned, 1: a vertex moved onto the point, 2: an edge split there.
+  int pin_reference_point(std::uint32_t point, Face nearest);
+  bool move_onto_reference_point(Vertex w, std::uint32_t point);
+  std::vector<Face> coverage_faces;
+  struct Uncovered {
+    double distance2;
+    std::uint32_t point;
+    Face nearest;
+  };
+  std::vector<Uncovered> uncovered;
+  std::vector<std::uint8_t> point_covered;  // per tree point, this call
+  std::vector<Point> pinned_now;  // this call's pins: one per worn tip, not one per point of it
+  // Where the sizing is right a reference point may lie farther from the surface than an edge's
+  // midpoint does: at the centre of a triangle at the split threshold (4/3 L) of a sphere sized
+  // by the paper's formula, 16/9 epsilon. Below that the check would fire on smooth surfaces
+  // (an icosphere at 1.4 tolerances: edges 12 % short of the formula's).
+  static constexpr double kCoverageLimit = 1.8;
+  double coverage_limit() const { return kCoverageLimit * fidelity_tolerance(); }
 
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
   void gather_all_edges();

@@ -264,7 +264,8 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     if (best_p == start) return false;
     // Better angles, but not at the price of a crossing with the surface around the fan, nor of
     // an edge off the reference (fidelity.cpp: a tip's fan turned around it cuts the tip off).
-    if (crossing_guard.fan_crosses(mesh, v) || (fan_strays(v) && !fan_strayed_at(v, start, start_hint))) {
+    if (crossing_guard.fan_crosses(mesh, v) || (fan_strays(v) && !fan_strayed_at(v, start, start_hint)) ||
+        (anchored(v) && !anchor_holds(v, mesh.position(v)))) {
       mesh.position(v) = start;
       ref_hint[v] = start_hint;
       sizing[v] = start_sizing;

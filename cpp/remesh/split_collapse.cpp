@@ -253,6 +253,7 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   if (scope[v0] != kActive || scope[v1] == kOutside) return false;
   if (vclass[v0] == kCorner && !is_line_kink(v0)) return false;
+  if (anchored(v0)) return false;
   Edge e = mesh.edge(h);
   if (vclass[v0] != kFree) {
     // A feature vertex (or a kink of its line) may only slide along its own feature line.
@@ -352,6 +353,7 @@ bool Remesher::Impl::choose_collapse(Edge e, double ratio, Halfedge* h_out, bool
   if (ratio > kMidpointCollapseRatio) return false;
   Vertex a = mesh.from_vertex(h0), b = mesh.to_vertex(h0);
   if (!movable(a) || !movable(b) || vclass[a] != kFree || vclass[b] != kFree) return false;
+  if (anchored(a) || anchored(b)) return false;
   Point mid = 0.5 * (mesh.position(a) + mesh.position(b));
   if (!collapse_geometry_ok(h0, mid, true) || !collapse_topology_ok(h0) || collapse_crosses(h0, mid, true)) return false;
   *h_out = h0;
