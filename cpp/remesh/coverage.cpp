@@ -11,7 +11,7 @@
 // turns no triangle over and keeps fair angles. The vertex is anchored to the point: never
 // removed, and moved (relaxation, sliver placement) only within the limit of it. After a split
 // the edges from it to the cut are long for the sizing there, so the next iteration's splits
-// rebuild the part (remesh() runs one more when the last one split).
+// rebuild the part; after the last iteration (Remesher::iterate(last)) a pin only moves a vertex.
 // The farthest points go first, and a point within the limit of a pin made in the same call waits
 // for the next: one pin per worn tip, not one per point of it.
 #include <algorithm>
@@ -44,7 +44,7 @@ constexpr double kMovedMinSin2 = 0.1786;  // sin^2 25 degrees
 constexpr double kSplitMinSin2 = 0.0670;  // sin^2 15 degrees
 }  // namespace
 
-size_t Remesher::Impl::cover_reference_points(size_t* splits) {
+size_t Remesher::Impl::cover_reference_points(bool may_split, size_t* splits) {
   *splits = 0;
   const double tolerance = fidelity_tolerance();
   if (!(tolerance > 0) || !crossing_guard.active()) return 0;
@@ -78,40 +78,18 @@ size_t Remesher::Impl::cover_reference_points(size_t* splits) {
   };
 
   // Most points are seen covered without a search: every vertex lies on the reference, in the
-  // triangle its hint names, and the corners of that triangle near the vertex or under one of
-  // its faces are covered. Only the rest are looked up in the grid (dragon.off at the defaults:
-  // a search per point cost 130-270 ms per iteration).
+  // triangle its hint names, and the corners of that triangle near the vertex are covered. Only
+  // the rest are looked up in the grid. (fandisk.off at the defaults: 40M instructions over the
+  // remesh's 1.6G; a pass testing the hinted corners under every face first cost 72M.)
   const auto& tris = tree.triangles();
   mesh::resize_scratch(point_covered, pts.size(), std::uint8_t(0));
   std::fill(point_covered.begin(), point_covered.end(), std::uint8_t(0));
-  for (Vertex v : mesh.vertices()) {  // first the corners near a vertex: three distances each
+  for (Vertex v : mesh.vertices()) {
     const std::uint32_t t = ref_hint[v];
     if (t >= tris.size()) continue;
     for (std::uint32_t i : tris[t]) {
       const Vec3 to_v = pts[i] - mesh.position(v);
       if (glm::dot(to_v, to_v) <= limit2) point_covered[i] = 1;
-    }
-  }
-  for (Face f : mesh.faces()) {  // then those under a face at a corner
-    Vertex c[3];
-    mesh.face_vertices(f, c);
-    const Point& a = mesh.position(c[0]);
-    const Point& b = mesh.position(c[1]);
-    const Point& d = mesh.position(c[2]);
-    Vec3 n = glm::cross(b - a, d - a);
-    const double n2 = glm::dot(n, n);
-    for (Vertex v : c) {
-      const std::uint32_t t = ref_hint[v];
-      if (t >= tris.size()) continue;
-      for (std::uint32_t i : tris[t]) {
-        if (point_covered[i]) continue;
-        const Point& p = pts[i];
-        const double height = glm::dot(p - a, n);
-        if (height * height > limit2 * n2) continue;  // off the face's plane by more
-        double bary[3];
-        const Point q = geometry::closest_point_on_triangle(p, a, b, d, bary);
-        if (glm::dot(q - p, q - p) <= limit2) point_covered[i] = 1;
-      }
     }
   }
   uncovered.clear();
@@ -141,7 +119,7 @@ size_t Remesher::Impl::cover_reference_points(size_t* splits) {
     });
     // The face may have gone in an earlier pin's split (its slot reused by a half): ask again.
     if (near_a_pin || mesh.is_deleted(u.nearest)) continue;
-    if (const int how = pin_reference_point(u.point, u.nearest)) {
+    if (const int how = pin_reference_point(u.point, u.nearest, may_split)) {
       *splits += how == 2;
       pinned_now.push_back(p);
       ++pins;
@@ -188,7 +166,7 @@ bool Remesher::Impl::anchor_holds(Vertex v, const Point& p) const {
   return glm::dot(d, d) <= limit * limit;
 }
 
-int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest) {
+int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest, bool may_split) {
   const Point& p = tree.points()[point];
   // First a corner of the face moved onto the point, nearest first: no vertex added, and no
   // valence-4 vertex where an iteration may not be left to even the valences out.
@@ -199,6 +177,7 @@ int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest) {
   });
   for (Vertex w : corners)
     if (move_onto_reference_point(w, point)) return 1;
+  if (!may_split) return 0;
   // The face's edges, nearest to p first.
   Halfedge sides[3];
   double side_d2[3];

@@ -148,7 +148,7 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   return stats;
 }
 
-IterationStats Remesher::iterate() {
+IterationStats Remesher::iterate(bool last) {
   Impl& m = *impl_;
   if (m.reference_stale) {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
@@ -173,7 +173,7 @@ IterationStats Remesher::iterate() {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  stats.pins = m.cover_reference_points(&stats.pin_splits);
+  stats.pins = m.cover_reference_points(!last, &stats.pin_splits);
   m.end_crossing_guard();
   m.leave_whole_mesh();
   return stats;
@@ -319,13 +319,8 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
   {
     Remesher remesher(mesh, options);
     remesher.keep_guard_grid();  // nothing else edits the mesh here (but the compaction, allowed)
-    // One iteration more when the last one split edges to put vertices back on worn parts of the
-    // reference (coverage.cpp): the edges to them are long, and the next iteration's splits
-    // rebuild the part.
-    // (Its own pins stay as placed: their triangles passed the pins' angle limits.)
-    bool pinned_last = false;
-    for (int i = 0; i < options.iterations || (pinned_last && i == options.iterations); ++i) {
-      pinned_last = remesher.iterate().pin_splits > 0;
+    for (int i = 0; i < options.iterations; ++i) {
+      remesher.iterate(i + 2 >= options.iterations);
       // Collapses only mark elements deleted and splits append new ones, so without compaction
       // the slots pile up over the iterations: cheese.off at --uniform --length 1% held 594k
       // face slots for 113k live faces, and every per-slot array (the mesh's, the passes'

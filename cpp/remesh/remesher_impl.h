@@ -277,14 +277,15 @@ struct Remesher::Impl : RemeshScratch {
   // ---- the other side of the fidelity check (coverage.cpp): reference points the surface left
   // more than kCoverageLimit x the tolerance behind (a tip worn away iteration by iteration)
   // get a vertex back on them (a vertex moved there or an edge split there), anchored to them.
-  size_t cover_reference_points(size_t* splits);  // returns the pins; *splits: how many split an edge
+  // Returns the pins; *splits: how many split an edge (none unless may_split).
+  size_t cover_reference_points(bool may_split, size_t* splits);
   // An anchored vertex is never removed and moves only within the limit of its point, so that it
   // keeps the point covered; within that it moves like any free vertex (a corner that never
   // moved left 16-degree triangles around it on fandisk at the defaults).
   bool anchored(Vertex v) const { return anchor[v] != UINT32_MAX && fidelity_tolerance() > 0; }
   bool anchor_holds(Vertex v, const Point& p) const;
   // 0: not pinned, 1: a vertex moved onto the point, 2: an edge split there.
-  int pin_reference_point(std::uint32_t point, Face nearest);
+  int pin_reference_point(std::uint32_t point, Face nearest, bool may_split);
   bool move_onto_reference_point(Vertex w, std::uint32_t point);
   std::vector<Face> coverage_faces;
   struct Uncovered {

@@ -209,9 +209,8 @@ TEST(CrossingGuard, KeptGridRemeshesAsAFreshGridDoes) {
     bool compacted = false;
     {
       remesh::Remesher remesher(fresh, o);
-      bool pinned_last = false;  // remesh() adds an iteration after one that pinned (coverage.cpp)
-      for (int i = 0; i < o.iterations || (pinned_last && i == o.iterations); ++i) {
-        pinned_last = remesher.iterate().pin_splits > 0;
+      for (int i = 0; i < o.iterations; ++i) {
+        remesher.iterate(i + 1 == o.iterations);
         if (fresh.faces_size() > 2 * fresh.n_faces()) fresh.garbage_collection(), compacted = true;
       }
       remesher.polish();

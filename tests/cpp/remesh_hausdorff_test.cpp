@@ -101,9 +101,9 @@ TEST(RemeshHausdorff, JaggedBorderKeptAtFineAndCoarsenedAtCoarseEpsilon) {
 
 // The reference side (coverage.cpp): a coarse polyhedral sphere (162 vertices, 12-degree edges)
 // remeshed at the defaults. The remesh is sized for the smooth sphere; its triangles cut the
-// input's corners, and relaxation wore them down further each iteration (CGAL's sphere.off:
-// Hausdorff 0.26 % of the diagonal against the target's 0.2 %, the input's corners the far side).
-// Corners left farther than the limit get a vertex back on them.
+// input's corners, and relaxation wore them down further each iteration (CGAL's sphere.off, the
+// same mesh: Hausdorff 0.26 % of the diagonal against the target's 0.2 %, the input's corners the
+// far side). Corners left farther than the limit get a vertex back on them.
 TEST(RemeshHausdorff, CornersOfACoarsePolyhedronAreCovered) {
   const SurfaceMesh input = mesh::make_icosphere(2);
   ASSERT_EQ(input.n_vertices(), 162u);
@@ -114,8 +114,7 @@ TEST(RemeshHausdorff, CornersOfACoarsePolyhedronAreCovered) {
   EXPECT_EQ(geometry::self_intersections(m, 1000).pairs.size(), 0u);
   EXPECT_GT(geometry::quality_report(m).min_angle_deg, 25.0);
 
-  // The iterations report the vertices they pin; a remesh with projection off has no reference
-  // to cover and pins none.
+  // The iterations report the vertices they pin: some of the 162 corners, not all.
   SurfaceMesh again = input;
   remesh::RemeshOptions o = remesh::default_options_for(again);
   remesh::Remesher remesher(again, o);
