@@ -148,7 +148,7 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   return stats;
 }
 
-IterationStats Remesher::iterate(bool last) {
+IterationStats Remesher::iterate(bool pins_move_only) {
   Impl& m = *impl_;
   if (m.reference_stale) {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
@@ -173,7 +173,7 @@ IterationStats Remesher::iterate(bool last) {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  stats.pins = m.cover_reference_points(!last, &stats.pin_splits);
+  stats.pins = m.cover_reference_points(!pins_move_only, &stats.pin_splits);
   m.end_crossing_guard();
   m.leave_whole_mesh();
   return stats;
@@ -320,7 +320,7 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
     Remesher remesher(mesh, options);
     remesher.keep_guard_grid();  // nothing else edits the mesh here (but the compaction, allowed)
     for (int i = 0; i < options.iterations; ++i) {
-      remesher.iterate(i + 2 >= options.iterations);
+      remesher.iterate(/*pins_move_only=*/i + 2 >= options.iterations);
       // Collapses only mark elements deleted and splits append new ones, so without compaction
       // the slots pile up over the iterations: cheese.off at --uniform --length 1% held 594k
       // face slots for 113k live faces, and every per-slot array (the mesh's, the passes'

@@ -86,9 +86,10 @@ class Remesher {
 
   // One iteration over the whole mesh (projection as in the options).
   // Adaptive: ends by putting vertices back on reference points the surface has left farther than
-  // the tolerance allows (coverage.cpp; IterationStats::pins). last: no iteration follows, so
-  // those vertices only move there (a split's long edges would wait for the next iteration).
-  IterationStats iterate(bool last = false);
+  // the tolerance allows (coverage.cpp; IterationStats::pins), by moving a vertex there or by
+  // splitting an edge there. pins_move_only: no splits, for the last two iterations of a batch
+  // (the long edges to a split's vertex take two more iterations to reach fair triangles).
+  IterationStats iterate(bool pins_move_only = false);
   // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
   // that no collapse or flip could remove to better places on the reference surface. Returns
   // the number of vertices moved (0 before the first iteration).
