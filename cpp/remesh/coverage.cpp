@@ -225,34 +225,49 @@ double Remesher::Impl::fan_distance2(Vertex v, const Point& at, const Point& p) 
   return best;
 }
 
-bool Remesher::Impl::move_keeps_cover(Vertex v, const Point& start, std::uint32_t start_hint) const {
+void Remesher::Impl::note_cover_duty(Vertex v) {
+  cover_duty.clear();
+  const double limit = coverage_limit();
+  if (!(limit > 0)) return;
+  const auto& pts = tree.points();
+  const auto& tris = tree.triangles();
+  const Point& at = mesh.position(v);
+  auto note = [&](std::uint32_t t) {
+    if (t >= tris.size()) return;
+    for (std::uint32_t i : tris[t]) {
+      if (std::any_of(cover_duty.begin(), cover_duty.end(), [&](const CoverDuty& d) { return d.point == i; })) continue;
+      const double d2 = fan_distance2(v, at, pts[i]);
+      if (d2 <= limit * limit) cover_duty.push_back({i, std::sqrt(d2)});
+    }
+  };
+  note(ref_hint[v]);
+  for (Halfedge out : mesh.halfedges(v)) note(ref_hint[mesh.to_vertex(out)]);
+}
+
+bool Remesher::Impl::move_keeps_cover(Vertex v, const Point& start) const {
   const double limit = coverage_limit();
   if (!(limit > 0)) return true;
   const double limit2 = limit * limit;
   const auto& pts = tree.points();
-  const auto& tris = tree.triangles();
   const Point& now = mesh.position(v);
-  auto keeps = [&](std::uint32_t t) {
-    if (t >= tris.size()) return true;
-    for (std::uint32_t i : tris[t]) {
-      if (fan_distance2(v, start, pts[i]) > limit2) continue;  // not covered by v's fan before
-      if (fan_distance2(v, now, pts[i]) <= limit2) continue;
-      // Covered by a face next to the fan, which the move left where it was?
-      bool covered = false;
-      for (Halfedge out : mesh.halfedges(v)) {
-        const Vertex w = mesh.to_vertex(out);
-        if (fan_distance2(w, mesh.position(w), pts[i]) <= limit2) {
-          covered = true;
-          break;
-        }
+  // Every point of the fan moved by at most |now - start| (v's share of it is at most 1), so a
+  // point that far within the limit at the start is within it still.
+  const double moved = glm::length(now - start);
+  for (const CoverDuty& duty : cover_duty) {
+    if (duty.distance + moved <= limit) continue;
+    const Point& p = pts[duty.point];
+    if (fan_distance2(v, now, p) <= limit2) continue;
+    // Covered by a face next to the fan, which the move left where it was?
+    bool covered = false;
+    for (Halfedge out : mesh.halfedges(v)) {
+      const Vertex w = mesh.to_vertex(out);
+      if (fan_distance2(w, mesh.position(w), p) <= limit2) {
+        covered = true;
+        break;
       }
-      if (!covered) return false;
     }
-    return true;
-  };
-  if (!keeps(start_hint)) return false;
-  for (Halfedge out : mesh.halfedges(v))
-    if (!keeps(ref_hint[mesh.to_vertex(out)])) return false;
+    if (!covered) return false;
+  }
   return true;
 }
 

@@ -288,10 +288,18 @@ struct Remesher::Impl : RemeshScratch {
   int pin_reference_point(std::uint32_t point, Face nearest, bool may_split);
   bool move_onto_reference_point(Vertex w, std::uint32_t point);
   double reference_angle_deficit(std::uint32_t point) const;  // 2 pi - the angles at it (radians)
-  // After v moved from `start` (hint start_hint): every reference point near it that v's fan
-  // covered before is still covered, by that fan or a face next to it (sliver placement: the
-  // polish after the last iteration wore a CAD part's edge 1.4 % of the diagonal off).
-  bool move_keeps_cover(Vertex v, const Point& start, std::uint32_t start_hint) const;
+  // Sliver placement moves v only where it keeps covered every reference point near it that its
+  // fan covered before the move, by that fan or a face next to it (the polish after the last
+  // iteration wore a CAD part's edge 1.4 % of the diagonal off). note_cover_duty(v), with v at
+  // its start: those points (the corners of v's and its ring's hint triangles covered by v's
+  // fan) and their distances; move_keeps_cover(v, start): whether v where it is now covers them.
+  struct CoverDuty {
+    std::uint32_t point;
+    double distance;
+  };
+  std::vector<CoverDuty> cover_duty;
+  void note_cover_duty(Vertex v);
+  bool move_keeps_cover(Vertex v, const Point& start) const;
   double fan_distance2(Vertex v, const Point& at, const Point& p) const;
   std::vector<Face> coverage_faces;
   struct Uncovered {

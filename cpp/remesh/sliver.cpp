@@ -200,6 +200,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     // (cgal/rotor_small at epsilon 0.5 %: 1.4 % of the diagonal off, against the target's 1 %),
     // but always keeping them left a 14.9-degree triangle on cgal/camel at 0.5 % (25.7 without).
     const bool keep_cover = quality >= kKeepCoverMinSin2;
+    if (keep_cover) note_cover_duty(v);
     int crossings = neck ? fan_crossings() : 0;
     const double floor = std::min(quality, sin2_limit);
     Vec3 normal(0.0);
@@ -233,7 +234,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
         project(v, normal);  // the fan's normal at the start: which sheet v is on
         ++evaluations;
         const double q = fan_quality(mesh.position(v));
-        if (q >= floor && (!keep_cover || move_keeps_cover(v, start, start_hint)))
+        if (q >= floor && (!keep_cover || move_keeps_cover(v, start)))
           tried[n_tried++] = {q, mesh.position(v), ref_hint[v], sizing[v]};
       }
       // Two sides of a fin that cross are a fraction of an edge apart, both on the reference:
@@ -272,7 +273,7 @@ size_t Remesher::Impl::place_sliver_vertices(double angle_deg, bool necks_only) 
     // Better angles, but not at the price of a crossing with the surface around the fan, nor of
     // an edge off the reference (fidelity.cpp: a tip's fan turned around it cuts the tip off).
     if (crossing_guard.fan_crosses(mesh, v) || (fan_strays(v) && !fan_strayed_at(v, start, start_hint)) ||
-        (anchored(v) && !anchor_holds(v, mesh.position(v))) || (keep_cover && !move_keeps_cover(v, start, start_hint))) {
+        (anchored(v) && !anchor_holds(v, mesh.position(v))) || (keep_cover && !move_keeps_cover(v, start))) {
       mesh.position(v) = start;
       ref_hint[v] = start_hint;
       sizing[v] = start_sizing;
