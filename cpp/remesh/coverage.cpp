@@ -21,7 +21,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "geometry/portable_math.h"
 #include "geometry/triangle.h"
 #include "remesh/remesher_impl.h"
 
@@ -196,18 +195,15 @@ bool Remesher::Impl::move_onto_reference_point(Vertex w, std::uint32_t point) {
   return true;
 }
 
-// Puts a vertex on the reference point: a corner of `nearest` moved there, else the edge of
-// `nearest` closest to it split there, whichever is safe first; the vertex is anchored to it.
 double Remesher::Impl::reference_angle_deficit(std::uint32_t point) const {
   const auto& pts = tree.points();
   const auto& tris = tree.triangles();
   double angles = 0;
   for (std::uint32_t k = ref_fan_offset[point]; k < ref_fan_offset[point + 1]; ++k) {
     const auto& t = tris[ref_fan[k]];
-    const int at = t[0] == point ? 0 : t[1] == point ? 1 : 2;
-    const Vec3 a = pts[t[(at + 1) % 3]] - pts[point];
-    const Vec3 b = pts[t[(at + 2) % 3]] - pts[point];
-    angles += portable::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+    double corner[3];
+    geometry::triangle_angles(pts[t[0]], pts[t[1]], pts[t[2]], corner);
+    angles += corner[t[0] == point ? 0 : t[1] == point ? 1 : 2];
   }
   return 2 * M_PI - angles;
 }
@@ -277,6 +273,8 @@ bool Remesher::Impl::anchor_holds(Vertex v, const Point& p) const {
   return glm::dot(d, d) <= limit * limit;
 }
 
+// Puts a vertex on the reference point: a corner of `nearest` moved there, else the edge of
+// `nearest` closest to it split there, whichever is safe first; the vertex is anchored to it.
 int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest, bool may_split) {
   const Point& p = tree.points()[point];
   // First a corner of the face moved onto the point, nearest first: no vertex added, and no
@@ -310,25 +308,10 @@ int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest, bool 
     bool ok = true;
     for (unsigned i = 0; i < 2 && ok; ++i) {
       const Halfedge side = mesh.halfedge(e, i);
-      const Vertex from = mesh.from_vertex(side), to = mesh.to_vertex(side);
-      const Vertex c = mesh.to_vertex(mesh.next(side));
-      ok = scope[from] == kActive && scope[to] == kActive && scope[c] == kActive;
-      if (!ok) break;
-      // The triangle (from, to, c) becomes (from, p, c) and (p, to, c).
-      const Point& a = mesh.position(from);
-      const Point& b = mesh.position(to);
-      const Point& cc = mesh.position(c);
-      const Vec3 n = glm::cross(b - a, cc - a);
-      for (const auto& tri : {std::array<Point, 3>{a, p, cc}, std::array<Point, 3>{p, b, cc}}) {
-        const Vec3 half = glm::cross(tri[1] - tri[0], tri[2] - tri[0]);
-        const double lengths = glm::length(n) * glm::length(half);
-        if (!(lengths > 0) || glm::dot(n, half) < kMinTurnCos * lengths ||
-            min_angle_sin2(tri[0], tri[1], tri[2]) < min_sin2) {
-          ok = false;
-          break;
-        }
-      }
+      ok = scope[mesh.from_vertex(side)] == kActive && scope[mesh.to_vertex(side)] == kActive &&
+           scope[mesh.to_vertex(mesh.next(side))] == kActive;
     }
+    ok = ok && split_halves_fair(e, p, kMinTurnCos, min_sin2);
     if (!ok || crossing_guard.split_crosses(mesh, e, p)) continue;
     const Vertex v = split_edge(e, p);
     anchor[v] = point;

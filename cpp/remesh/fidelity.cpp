@@ -247,22 +247,26 @@ Point Remesher::Impl::place_on_reference(Edge e, const Point& mid) const {
   if (!(glm::dot(facing, facing) > 0)) return mid;
   const geometry::TriangleTree::ClosestHit hit = closest_on_reference(mid, ref_hint[a], &facing, 0.5 * glm::length(pb - pa));
   if (hit.triangle == UINT32_MAX) return mid;
+  // Nor a sliver: the point on the reference may lie next to the line of another side.
+  return split_halves_fair(e, hit.point, 0.5, kPlacedMinSin2) ? hit.point : mid;
+}
+
+bool Remesher::Impl::split_halves_fair(Edge e, const Point& p, double min_cos, double min_sin2) const {
   for (unsigned i = 0; i < 2; ++i) {
     const Halfedge h = mesh.halfedge(e, i);
     if (mesh.is_boundary(h)) continue;
-    const Point& c = mesh.position(mesh.to_vertex(mesh.next(h)));
     // The old triangle (from, to, c) and its halves (from, p, c), (p, to, c).
-    const Point& from = i == 0 ? pb : pa;
-    const Point& to = i == 0 ? pa : pb;
+    const Point& from = mesh.position(mesh.from_vertex(h));
+    const Point& to = mesh.position(mesh.to_vertex(h));
+    const Point& c = mesh.position(mesh.to_vertex(mesh.next(h)));
     const Vec3 n = glm::cross(to - from, c - from);
-    for (const Vec3& half : {glm::cross(hit.point - from, c - from), glm::cross(to - hit.point, c - hit.point)}) {
+    for (const Vec3& half : {glm::cross(p - from, c - from), glm::cross(to - p, c - p)}) {
       const double lengths = glm::length(n) * glm::length(half);
-      if (!(lengths > 0) || glm::dot(n, half) < 0.5 * lengths) return mid;
+      if (!(lengths > 0) || glm::dot(n, half) < min_cos * lengths) return false;
     }
-    // Nor a sliver: the point on the reference may lie next to the line of another side.
-    if (std::min(min_angle_sin2(from, hit.point, c), min_angle_sin2(hit.point, to, c)) < kPlacedMinSin2) return mid;
+    if (std::min(min_angle_sin2(from, p, c), min_angle_sin2(p, to, c)) < min_sin2) return false;
   }
-  return hit.point;
+  return true;
 }
 
 }  // namespace adasculpt::remesh

@@ -270,6 +270,9 @@ struct Remesher::Impl : RemeshScratch {
   bool fan_strays(Vertex v) const;  // an edge at v strays
   bool fan_strayed_at(Vertex v, const Point& p, std::uint32_t hint) const;  // the same with v at p
   void split_placed_on_reference(Edge e, const Point& mid);  // a fidelity split, checked
+  // Whether splitting e at p turns none of its triangles' halves by more than acos(min_cos) from
+  // the triangle it replaces and leaves none with a smallest angle's squared sine under min_sin2.
+  bool split_halves_fair(Edge e, const Point& p, double min_cos, double min_sin2) const;
   Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
   bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move) const;
   bool flip_keeps_fidelity(Vertex c, Vertex d) const;  // the new edge c-d of a flip
