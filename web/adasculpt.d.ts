@@ -125,6 +125,13 @@ export interface FrameTimings {
   /** Render-buffer update in wasm after the core's work. */
   buffers: number;
   stamps: number;
+  /** Grab frames: the ROI was cut to its vertex budget, and the vertices it holds. */
+  roiCapped?: boolean;
+  roiVertices?: number;
+  /** Grab frames: the vertices the frame remeshed (what the drag strained since they last were). */
+  remeshedVertices?: number;
+  /** Grab frames: the frame applied a finished solve of the blending field. */
+  fieldRefreshed?: boolean;
 }
 
 /** A whole stroke's figures (`end` event): frames with a core call, core + buffer ms per frame. */

@@ -557,6 +557,8 @@ class SessionHandle {
     ms.set("stamps", t.stamps);
     ms.set("roiCapped", t.roi_capped);  // the grab's ROI was cut to its vertex budget
     ms.set("roiVertices", t.roi_vertices);
+    ms.set("remeshedVertices", t.remeshed_vertices);  // the grab frame's remeshing scope (what it strained)
+    ms.set("fieldRefreshed", t.field_refreshed);       // the grab frame applied a finished field solve
     r.set("timings", ms);
     return r;
   }

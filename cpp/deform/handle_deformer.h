@@ -60,12 +60,18 @@ struct DeformOptions {
   // it runs per frame, the longest being the ordering of a 10k-vertex ROI (~3 ms).
   double field_work_per_frame = 3e6;
   // Carried, in a grab (sculpt/grab.h): the work of a whole frame in the same unit. The field's
-  // share is what the frame's refinement and region iteration (estimated from the region's size)
-  // leave of it, so that heavy and light frames cost alike: 5e6 is about 50-55M instructions, the
-  // frames of a 10k-vertex ROI's pull 7-8 ms natively on this project's 2-core machine.
-  double frame_work = 5e6;
+  // share is what the frame's refinement and region iteration (estimated from the size of the
+  // last frame's remeshing scope) leave of it, so that heavy and light frames cost alike: 3e6 is
+  // about 35-40M instructions, the frames of a 10k-vertex ROI's pull 6-9 ms natively on this
+  // project's 2-core machine. (It was 5e6 while every frame remeshed the whole region; at 2.5e6
+  // the held-out pull's field was not solved once in 60 frames.)
+  double frame_work = 3.3e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;
+  // In a grab (sculpt/grab.h, sculpt/region_strain.h): a vertex of the region is remeshed again
+  // once the strain of the edges around it, accumulated since it last was, reaches this (0.1: an
+  // edge stretched by 10 % or turned by 6 degrees); 0 = the whole region every frame (the paper).
+  double remesh_strain = 0.1;
   // EveryFrame: the factorisation reuse of the exact solve (biharmonic_solver.h).
   FieldReuse reuse = FieldReuse::Exact;
   int max_refinement_steps = 20;       // CarryFactorization only: PCG steps before refactorising

@@ -15,13 +15,20 @@ FramePlan plan_frame(size_t region_vertices, bool sizing_due, const deform::Defo
   const double n = double(region_vertices);
   plan.region_work = n * (FramePlan::kRegionWorkPerVertex + (sizing_due ? FramePlan::kSizingWorkPerVertex : 0.0));
   plan.field.work = std::max(options.frame_work - plan.region_work, FramePlan::kMinFieldFraction * options.frame_work);
-  plan.field.defer_large_steps = sizing_due;
+  // A frame whose region work leaves the field only its minimum share (a grab's first frames
+  // remesh the whole region) defers too: the ordering of the field's system, run in one piece,
+  // added 20M instructions to the held-out pull's first two frames.
+  plan.field.defer_large_steps = sizing_due || plan.region_work + plan.field.work > options.frame_work;
   return plan;
 }
 
 void Grab::begin(const mesh::SurfaceMesh& mesh, const Point& picked, mesh::Face picked_face, double handle_radius,
                  double roi_radius) {
   deformer_.begin(mesh, picked, picked_face, handle_radius, roi_radius);
+  strain_.reset();
+  scope_.clear();
+  dragged_ = false;
+  deferred_in_a_row_ = 0;
 }
 
 void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const deform::HandleTransform& total,
@@ -32,10 +39,19 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   // share, a frame whose region iteration measured the whole sizing again (every 4th; 20M
   // instructions on a 10k-vertex ROI, now spread over the frames for such a region) had 1.5x the
   // instructions of the others, and the first frames of a grab (largest region) 2x the last.
-  plan_ = plan_frame(deformer_.last().region.size(), remesher.sizing_due(), deformer_.options());
+  // The region work is planned from the last frame's remeshing scope (the first frame remeshes
+  // the whole region, sculpt/region_strain.h).
+  const size_t planned = dragged_ ? scope_.size() : deformer_.last().region.size();
+  plan_ = plan_frame(planned, remesher.sizing_due(), deformer_.options());
+  // Never defer for long: the field's solve must go on even when every frame is heavy.
+  if (plan_.field.defer_large_steps && ++deferred_in_a_row_ > kMaxDeferredFrames) plan_.field.defer_large_steps = false;
+  if (!plan_.field.defer_large_steps) deferred_in_a_row_ = 0;
   deform::StepResult& r = deformer_.step(mesh, total, epsilon, plan_.field);
   const auto t1 = Clock::now();
-  const remesh::IterationStats st = remesher.iterate_region(r.region);
+  strain_.select(mesh, r.region, deformer_.options().remesh_strain, scope_);
+  const remesh::IterationStats st = remesher.iterate_region(scope_);
+  strain_.update_region(mesh, r.region, scope_);
+  dragged_ = true;
   f = FrameTimings{};
   f.roi_ms = r.roi_ms;
   f.field_ms = r.field_ms;
@@ -45,6 +61,8 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   f.total_ms = ms_since(t0);
   f.roi_capped = r.roi_capped;
   f.roi_vertices = int(r.n_handle + r.n_free);
+  f.field_refreshed = r.field_refreshed;
+  f.remeshed_vertices = int(scope_.size());
   f.refine_splits = int(r.splits);
   f.splits = int(st.splits);
   f.collapses = int(st.collapses);

@@ -1,7 +1,8 @@
 #pragma once
 // The frames of one grab, as the session runs them: the handle deformation (ROI, field,
 // refinement, blended transform; deform/handle_deformer.h) followed by one remeshing iteration on
-// the deformed region plus a ring (remesh::Remesher::iterate_region), with the timings and the
+// the part of the deformed region (ROI plus a ring) that the deformation strained since it was
+// last remeshed (sculpt/region_strain.h; Remesher::iterate_region), with the timings and the
 // changes the session reports. Every step is proportional to the region: nothing here walks the
 // whole mesh, per frame or per grab (the seed of the ROI is a corner of the picked face).
 #include <cstdint>
@@ -9,14 +10,15 @@
 #include "deform/handle_deformer.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/remesher.h"
+#include "sculpt/region_strain.h"
 #include "sculpt/session.h"
 
 namespace adasculpt::sculpt {
 
 // The plan of a grab frame, in the field solve's unit (multiply-adds, about 10 instructions each
 // natively; counted from sizes, not timed, so that a replay does the same everywhere): the
-// refinement and the region iteration cost about kRegionWorkPerVertex per vertex of the region
-// (a large region measures a slice of its sizing in every call, remesher.h), a region iteration
+// refinement and the region iteration cost about kRegionWorkPerVertex per vertex the frame
+// remeshes (planned from the last frame's remeshing scope; a large region measures a slice of its sizing in every call, remesher.h), a region iteration
 // that measures the sizing of its whole scope again (Remesher::sizing_due: a small region, every
 // 4th call) about kSizingWorkPerVertex more; the field's amortised solve gets what is left of
 // DeformOptions::frame_work, at least kMinFieldFraction of it. Such a heavier frame also leaves
@@ -54,6 +56,11 @@ class Grab {
  private:
   deform::HandleDeformer deformer_;
   FramePlan plan_;
+  RegionStrain strain_;
+  std::vector<mesh::Vertex> scope_;  // the remeshing iteration's part of the region (strain_)
+  bool dragged_ = false;             // a frame ran since begin()
+  static constexpr int kMaxDeferredFrames = 3;
+  int deferred_in_a_row_ = 0;  // frames in a row whose plan deferred the field's large steps
 };
 
 }  // namespace adasculpt::sculpt

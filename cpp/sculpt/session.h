@@ -42,6 +42,11 @@ struct FrameTimings {
   int stamps = 0;
   bool roi_capped = false;
   int roi_vertices = 0;
+  // A grab frame: it applied a finished exact solve of the field (the field's refreshes).
+  bool field_refreshed = false;
+  // A grab frame: the vertices its remeshing iteration worked on (the strained part of the
+  // region and two rings, sculpt/region_strain.h).
+  int remeshed_vertices = 0;
   // A grab frame's mesh edits: the refinement's splits, then the region iteration's.
   int refine_splits = 0, splits = 0, collapses = 0, flips = 0;
 };

@@ -8,6 +8,7 @@
 // absent): the settings were tuned on the dragon, the held-out scene checks they carry over.
 // With ADASCULPT_PULL_FRAMES set, every frame's phases are printed and, under callgrind, each
 // frame is dumped (scripts/pull-frames-callgrind.sh: instructions per frame, machine-independent).
+// ADASCULPT_REMESH_STRAIN and ADASCULPT_FRAME_WORK override the grab's options of those names.
 //   build/native/adasculpt_bench --benchmark_filter=Pull
 // Writes the scene as a session file (build/bench/pull-scene.json: a remesh step, then the grab)
 // for the WebAssembly run of the same scene (tests/bench/pull-frame-wasm.mjs).
@@ -170,8 +171,12 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
   session.load(m);
   session.set_settings(s.settings);
   if (every_frame_solve) session.grab_options().field_solve = deform::FieldSolve::EveryFrame;
+  // For comparisons (docs/figures.md): ADASCULPT_REMESH_STRAIN=0 remeshes the whole region every
+  // frame as the paper does; ADASCULPT_FRAME_WORK sets the frame's work budget.
+  if (const char* v = std::getenv("ADASCULPT_REMESH_STRAIN")) session.grab_options().remesh_strain = std::atof(v);
+  if (const char* v = std::getenv("ADASCULPT_FRAME_WORK")) session.grab_options().frame_work = std::atof(v);
   std::vector<RunFigures> wall_runs, cpu_runs;
-  std::vector<double> roi, field, refine, deform, remesh, begin_cpu;
+  std::vector<double> roi, field, refine, deform, remesh, begin_cpu, remeshed, refreshes, first_refresh;
   size_t region = 0;
   bool capped = false;
   geometry::QualityReport after_pull;
@@ -181,6 +186,7 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
       const double b0 = thread_cpu_ms();
       session.grab_begin(s.grab.center, s.grab.handle_radius, s.grab.roi_radius);
       begin_cpu.push_back(thread_cpu_ms() - b0);  // the press: picking, the first ROI and system
+      int refreshed = 0, first_refreshed = 0;
       for (int i = 1; i <= kFrames; ++i) {
         const double c0 = thread_cpu_ms();
         const auto t0 = Clock::now();
@@ -194,6 +200,8 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
         deform.push_back(f.deform_ms);
         remesh.push_back(f.remesh_ms);
         region = std::max(region, size_t(f.roi_vertices));
+        remeshed.push_back(double(f.remeshed_vertices) / std::max(1, f.roi_vertices));
+        if (f.field_refreshed && !refreshed++) first_refreshed = i;
         if (std::getenv("ADASCULPT_PULL_FRAMES")) {  // per-frame phases, to see what makes a slow frame slow
           CALLGRIND_DUMP_STATS_AT(("frame " + std::to_string(i)).c_str());
           std::printf("  run %d frame %2d cpu %6.2f roi %5.2f field %5.2f refine %5.2f deform %5.2f remesh %6.2f; "
@@ -205,6 +213,8 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
         session.clear_changes();
       }
       session.grab_end();
+      refreshes.push_back(refreshed);
+      first_refresh.push_back(first_refreshed);
       if (run == kRuns - 1) after_pull = session.quality();  // what the budgets left of the mesh
       session.undo();  // every run pulls the same mesh
       wall_runs.push_back(figures(wall));
@@ -234,6 +244,10 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
               "remesh %.2f\n",
               label, percentile(roi, 0.95), percentile(field, 0.95), percentile(refine, 0.95),
               percentile(deform, 0.95), percentile(remesh, 0.95));
+  // What the frame plan trades: the remeshing scope against the field's freshness.
+  std::printf("     %-28s remeshed per frame (median): %.0f %% of the ROI; field solves applied per grab %.0f, "
+              "the first at frame %.0f\n",
+              label, 100.0 * median(remeshed), median(refreshes), median(first_refresh));
   std::printf("     %-28s after the pull: min angle %.2f deg, mean min angle %.2f deg, %.3f %% of triangles under 30 deg\n",
               label, after_pull.min_angle_deg, after_pull.mean_min_angle_deg, after_pull.pct_min_angle_lt_30);
   std::fflush(stdout);

@@ -1,0 +1,124 @@
+#include "sculpt/region_strain.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "mesh/flat_walk.h"
+
+namespace adasculpt::sculpt {
+
+namespace {
+std::uint16_t valence(const mesh::SurfaceMesh::HalfedgeConnectivity* hc, const mesh::Halfedge* vh, mesh::Vertex v) {
+  std::uint16_t n = 0;
+  mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge) { ++n; });
+  return n;
+}
+}  // namespace
+
+void RegionStrain::reset() {
+  // Stamps of older grabs never equal a later frame_: no array needs clearing.
+  frame_ += 2;
+}
+
+void RegionStrain::grow(size_t n) {
+  if (seen_.size() >= n) return;
+  seen_.resize(n, 0);
+  position_.resize(n, Point(0.0));
+  displacement_.resize(n, Vec3(0.0));
+  strain_.resize(n, 0.0f);
+  scope_stamp_.resize(n, 0);
+  unsettled_.resize(n, 0);
+  valence_.resize(n, 0);
+  in_region_.resize(n, 0);
+}
+
+void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& region, double threshold,
+                          std::vector<mesh::Vertex>& scope) {
+  grow(mesh.vertices_size());
+  // Flat arrays: this runs on every vertex of a 10k-vertex region every frame.
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  const Point* p = mesh.positions().data();
+  for (mesh::Vertex v : region) {
+    in_region_[v.idx] = frame_;
+    if (known(v)) displacement_[v.idx] = p[v.idx] - position_[v.idx];
+  }
+  const float threshold2 = float(threshold * threshold);
+  front_.clear();
+  for (mesh::Vertex v : region) {
+    bool active = !known(v) || unsettled_[v.idx] == frame_;
+    if (!active) {
+      const Point& pv = p[v.idx];
+      const Vec3& dv = displacement_[v.idx];
+      double strain2 = 0;  // the largest squared strain of the edges around v
+      mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+        const mesh::Index n = hc[h.idx].to.idx;
+        if (in_region_[n] != frame_) return;
+        if (seen_[n] != frame_) {  // a vertex added around v since the last frame
+          active = true;
+          return;
+        }
+        const Vec3 e = p[n] - pv, de = displacement_[n] - dv;
+        const double e2 = glm::dot(e, e), de2 = glm::dot(de, de);
+        if (de2 > strain2 * e2) strain2 = e2 > 0 ? de2 / e2 : strain2;
+      });
+      strain_[v.idx] += float(std::sqrt(strain2));
+      active = active || strain_[v.idx] * strain_[v.idx] >= threshold2;
+    }
+    if (active) {
+      strain_[v.idx] = 0.0f;
+      scope_stamp_[v.idx] = frame_;
+      front_.push_back(v);
+    }
+  }
+  // The rings around the active vertices, breadth first, within the region.
+  for (int ring = 0; ring < kScopeRings; ++ring) {
+    next_front_.clear();
+    for (mesh::Vertex v : front_)
+      mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+        const mesh::Index n = hc[h.idx].to.idx;
+        if (in_region_[n] != frame_ || scope_stamp_[n] == frame_) return;
+        scope_stamp_[n] = frame_;
+        next_front_.push_back(mesh::Vertex(n));
+      });
+    front_.swap(next_front_);
+  }
+  scope.clear();
+  for (mesh::Vertex v : region)
+    if (scope_stamp_[v.idx] == frame_) {
+      scope.push_back(v);
+      valence_[v.idx] = valence(hc, vh, v);
+    }
+}
+
+void RegionStrain::update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,
+                                 const std::vector<mesh::Vertex>& scope) {
+  region.erase(std::remove_if(region.begin(), region.end(), [&](mesh::Vertex v) { return mesh.is_deleted(v); }),
+               region.end());
+  grow(mesh.vertices_size());
+  // The vertices around which the iteration changed the connectivity (new ones, and those whose
+  // valence changed: a split, collapse or flip next to them) stay in the next frame's scope: the
+  // remesher is still at work there (a coarsening region collapses only a share of its edges per
+  // frame; a flip or split at the scope's held border left triangles that only relaxation mends).
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
+  for (mesh::Vertex v : scope) {
+    if (in_region_[v.idx] != frame_) {  // added by the remeshing iteration
+      in_region_[v.idx] = frame_;
+      strain_[v.idx] = 0.0f;  // (the slot may have held a vertex of an undone grab)
+      region.push_back(v);
+      unsettled_[v.idx] = frame_ + 1;
+    } else if (valence(hc, vh, v) != valence_[v.idx]) {
+      unsettled_[v.idx] = frame_ + 1;
+    }
+  }
+  ++frame_;
+  for (mesh::Vertex v : region) {
+    position_[v.idx] = mesh.position(v);
+    seen_[v.idx] = frame_;
+  }
+}
+
+}  // namespace adasculpt::sculpt

@@ -1,0 +1,64 @@
+#pragma once
+// Which part of a grab's region each frame's remeshing iteration works on (issue 18: the frame-
+// time tail). A pull moves every vertex of its ROI, but most of them hardly change shape: the
+// handle translates rigidly, and near the ROI's border the field is flat. Remeshing all of them
+// every frame (the paper's scheme) cost as much as the field's solve and the rest of the frame
+// together.
+//
+// RegionStrain keeps, per vertex of the region, the position it had at the end of the last frame
+// and the strain accumulated since the remesher last worked on it. A frame's strain at a vertex v
+// is the largest relative change of an edge vector around it,
+//   max over neighbours n of |d(n) - d(v)| / |p(n) - p(v)|,   d = the frame's displacement:
+// 0 for a translation, about the stretch for a stretch and the angle for a bend (or a rotation, so
+// a twist is remeshed as before). A vertex is active when its accumulated strain reaches the
+// threshold, when it has no position from the last frame (new, or new to the region; the first
+// frame: all of them) or when such a vertex is its neighbour. The scope of the frame's remeshing is
+// the active vertices and kScopeRings rings around them (the outer ring holds the scope's border,
+// Remesher::iterate_region, so the active vertices' neighbours are still relaxed); the active
+// vertices' strain starts again from 0.
+//
+// With threshold 0 every vertex is active: the scope is the whole region, as in the paper.
+#include <cstdint>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace adasculpt::sculpt {
+
+class RegionStrain {
+ public:
+  // With one ring, the vertices next to the active ones were held and the triangles between them
+  // and the rest degraded: the held-out pull ended with 10x as many triangles under 30 degrees as
+  // with the whole region; two rings keep it within 3x (and the dragon's the same).
+  static constexpr int kScopeRings = 2;
+
+  // A new grab: nothing is known about any vertex.
+  void reset();
+  // After the frame's deformation: the scope of its remeshing iteration, from `region` (the
+  // deformer's ROI plus ring, live vertices). Fills `scope` (a subset of region, in its order).
+  void select(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& region, double threshold,
+              std::vector<mesh::Vertex>& scope);
+  // After the remeshing iteration: `region` (the deformer's list) loses the vertices the
+  // iteration removed and gains those it added (they are in `scope`, which the remesher updated);
+  // then every vertex of the region records its position for the next frame.
+  void update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,
+                     const std::vector<mesh::Vertex>& scope);
+
+ private:
+  void grow(size_t n);
+  bool known(mesh::Vertex v) const { return seen_[v.idx] == frame_; }
+
+  // Per vertex slot, never cleared: an entry counts when its stamp equals frame_.
+  std::uint32_t frame_ = 1;
+  std::vector<std::uint32_t> seen_;         // position_ holds the end of the last frame
+  std::vector<Point> position_;
+  std::vector<Vec3> displacement_;          // this frame's (where known)
+  std::vector<float> strain_;               // accumulated since last in an active set
+  std::vector<std::uint32_t> in_region_;    // in this frame's region
+  std::vector<std::uint32_t> scope_stamp_;  // in this frame's scope
+  std::vector<std::uint32_t> unsettled_;    // the last iteration changed its connectivity
+  std::vector<std::uint16_t> valence_;      // before this frame's iteration (scope vertices)
+  std::vector<mesh::Vertex> front_, next_front_;  // the rings' breadth-first search
+};
+
+}  // namespace adasculpt::sculpt
