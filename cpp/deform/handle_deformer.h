@@ -145,6 +145,9 @@ class HandleDeformer {
   const std::vector<Vertex>& fixed_vertices() const { return fixed_; }  // ring 1 then ring 2
   const GeodesicWorkspace& distances() const { return geodesic_; }
   const StepResult& last() const { return result_; }
+  // The region of the last step (last().region), for the caller to edit in place between steps
+  // (see StepResult::region).
+  std::vector<mesh::Vertex>& region() { return result_.region; }
   DeformOptions& options() { return options_; }
   BiharmonicSolver& solver() { return solver_; }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 namespace adasculpt::sculpt {
 
@@ -71,6 +72,25 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   changes.touched_vertices.insert(changes.touched_vertices.end(), r.region.begin(), r.region.end());
 }
 
-void Grab::end() { deformer_.end(); }
+void Grab::end(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, ChangeSet& changes) {
+  // The last frames' iterations may have left work around the vertices whose connectivity they
+  // changed (a split at the scope's held border leaves its new vertex unrelaxed until the next
+  // frame): a release settles it, a pass or two over those vertices and two rings. Nothing moves
+  // any more, so only they are active (an infinite strain threshold).
+  if (dragged_) {
+    std::vector<mesh::Vertex>& region = deformer_.region();
+    for (int pass = 0; pass < kSettlePasses; ++pass) {
+      strain_.select(mesh, region, std::numeric_limits<double>::infinity(), scope_);
+      if (scope_.empty()) break;
+      const size_t faces_before = mesh.faces_size();
+      const remesh::IterationStats st = remesher.iterate_region(scope_);
+      strain_.update_region(mesh, region, scope_);
+      if (st.splits + st.collapses + st.flips > 0 || mesh.faces_size() != faces_before) changes.topology_changed = true;
+      changes.touched_vertices.insert(changes.touched_vertices.end(), scope_.begin(), scope_.end());
+    }
+  }
+  dragged_ = false;
+  deformer_.end();
+}
 
 }  // namespace adasculpt::sculpt

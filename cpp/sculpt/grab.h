@@ -44,7 +44,10 @@ class Grab {
   // One frame; fills `timings` (every phase, roi_capped) and appends to `changes`.
   void drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const deform::HandleTransform& total,
             double epsilon, FrameTimings& timings, ChangeSet& changes);
-  void end();
+  // The release: settles what the last frames' iterations left unfinished (at most
+  // kSettlePasses region iterations over the vertices whose connectivity they changed, and two
+  // rings), appending to `changes`.
+  void end(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, ChangeSet& changes);
   bool active() const { return deformer_.active(); }
   // The field solve (carried by default, or every frame as in the paper) and the ROI's vertex
   // budget; they apply from the next begin().
@@ -60,6 +63,7 @@ class Grab {
   std::vector<mesh::Vertex> scope_;  // the remeshing iteration's part of the region (strain_)
   bool dragged_ = false;             // a frame ran since begin()
   static constexpr int kMaxDeferredFrames = 3;
+  static constexpr int kSettlePasses = 2;
   int deferred_in_a_row_ = 0;  // frames in a row whose plan deferred the field's large steps
 };
 

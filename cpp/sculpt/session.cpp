@@ -318,7 +318,7 @@ struct Session::Impl {
   // Ends a grab or a brush stroke, whichever runs.
   void end_grab() {
     if (!grabbing && !brushing && !masking) return;
-    if (grabbing) grab.end();
+    if (grabbing) grab.end(mesh, *remesher, changes);
     if (brushing || grabbing) {
       // A stroke that mirrored to its end changed the mesh only through its mirrored stamps and
       // passes: the map it borrowed comes back as the mesh's map. Anything else is followed from

@@ -176,7 +176,7 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
   if (const char* v = std::getenv("ADASCULPT_REMESH_STRAIN")) session.grab_options().remesh_strain = std::atof(v);
   if (const char* v = std::getenv("ADASCULPT_FRAME_WORK")) session.grab_options().frame_work = std::atof(v);
   std::vector<RunFigures> wall_runs, cpu_runs;
-  std::vector<double> roi, field, refine, deform, remesh, begin_cpu, remeshed, refreshes, first_refresh;
+  std::vector<double> roi, field, refine, deform, remesh, begin_cpu, end_cpu, remeshed, refreshes, first_refresh;
   size_t region = 0;
   bool capped = false;
   geometry::QualityReport after_pull;
@@ -212,7 +212,9 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
         capped = capped || f.roi_capped;
         session.clear_changes();
       }
-      session.grab_end();
+      const double e0 = thread_cpu_ms();
+      session.grab_end();  // the release: settles what the last frames left (sculpt/grab.h)
+      end_cpu.push_back(thread_cpu_ms() - e0);
       refreshes.push_back(refreshed);
       first_refresh.push_back(first_refreshed);
       if (run == kRuns - 1) after_pull = session.quality();  // what the budgets left of the mesh
@@ -246,8 +248,8 @@ void run_pull(benchmark::State& state, const PullScene& s, const mesh::SurfaceMe
               percentile(deform, 0.95), percentile(remesh, 0.95));
   // What the frame plan trades: the remeshing scope against the field's freshness.
   std::printf("     %-28s remeshed per frame (median): %.0f %% of the ROI; field solves applied per grab %.0f, "
-              "the first at frame %.0f\n",
-              label, 100.0 * median(remeshed), median(refreshes), median(first_refresh));
+              "the first at frame %.0f; grab_end cpu ms median %.2f\n",
+              label, 100.0 * median(remeshed), median(refreshes), median(first_refresh), median(end_cpu));
   std::printf("     %-28s after the pull: min angle %.2f deg, mean min angle %.2f deg, %.3f %% of triangles under 30 deg\n",
               label, after_pull.min_angle_deg, after_pull.mean_min_angle_deg, after_pull.pct_min_angle_lt_30);
   std::fflush(stdout);

@@ -114,7 +114,7 @@ TEST(GrabFramePlan, CollapsesStayWithinTheirShareAndTheLeftoversAreDone) {
     if (size_t(f.collapses) + 2 >= scope_before / 8) ++capped_frames;
     last_collapses = size_t(f.collapses);
   }
-  rig.grab.end();
+  rig.grab.end(rig.mesh, *rig.remesher, rig.changes);
   rig.mesh.validate();
   EXPECT_GE(capped_frames, 2u) << "the share never bound: the test does not exercise it";
   EXPECT_LE(last_collapses, first_region / 100) << "the leftovers were not done";
@@ -142,7 +142,7 @@ TEST(GrabFramePlan, PullFramesKeepTheirFieldShareAndTheMeshItsQuality) {
     rig.mesh.validate();
   }
   const std::vector<Vertex> region = rig.grab.deformer().last().region;
-  rig.grab.end();
+  rig.grab.end(rig.mesh, *rig.remesher, rig.changes);
   EXPECT_GE(deferring_frames, 10);
   EXPECT_GE(refreshes, 2) << "the field's solve stalled under the plan";
   EXPECT_GT(region_min_angle_deg(rig.mesh, region), 20.0);
@@ -178,7 +178,7 @@ TEST(GrabFramePlan, ALargeRegionMeasuresItsSizingASliceAtATime) {
     last_remeshed = rig.timings.remeshed_vertices;
   }
   const std::vector<Vertex> region = rig.grab.deformer().last().region;
-  rig.grab.end();
+  rig.grab.end(rig.mesh, *rig.remesher, rig.changes);
   rig.mesh.validate();
   EXPECT_GE(large_frames, 10) << "the scopes are too small to exercise the spreading";
   EXPECT_GT(region_min_angle_deg(rig.mesh, region), 20.0);
