@@ -53,6 +53,7 @@ class Grab {
   // budget; they apply from the next begin().
   deform::DeformOptions& options() { return deformer_.options(); }
   const deform::HandleDeformer& deformer() const { return deformer_; }
+  deform::HandleDeformer& deformer() { return deformer_; }  // (measurements: field_error_vs_full_solve)
   // The plan of the last frame (its field share and the other work it expected).
   const FramePlan& last_plan() const { return plan_; }
 

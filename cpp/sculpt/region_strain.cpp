@@ -16,32 +16,6 @@ std::uint16_t valence(const mesh::SurfaceMesh::HalfedgeConnectivity* hc, const m
   return n;
 }
 
-// How much strain a vertex may take before it is remeshed again, as a fraction of the threshold,
-// from the worst triangle around it: all of it when every angle is 30 degrees or more, a quarter
-// at 20 degrees and below (linear in the sine between). A 10 % strain turns an angle by up to
-// about 6 degrees: a triangle already near the remesher's 25-30 degrees would fall to ~20 before
-// its turn came (the held-out pull's worst triangle between frames fell from 27.7 to 18-24).
-float strain_allowance(const mesh::SurfaceMesh::HalfedgeConnectivity* hc, const mesh::Halfedge* vh, const Point* p,
-                       mesh::Vertex v) {
-  constexpr double kSin20 = 0.3420201433256687, kSin30 = 0.5;
-  double worst_sin2 = 1.0;  // sin^2 of the smallest angle of the triangles around v
-  mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
-    if (!hc[h.idx].face.is_valid()) return;
-    const Point& a = p[v.idx];
-    const Point& b = p[hc[h.idx].to.idx];
-    const Point& c = p[hc[hc[h.idx].next.idx].to.idx];
-    const Vec3 ab = b - a, bc = c - b, ca = a - c;
-    const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
-    const Vec3 n = glm::cross(ab, -ca);
-    const double area2 = glm::dot(n, n);  // (2 area)^2
-    // The smallest angle is opposite the shortest edge: sin^2 = (2A)^2 / (product of the others).
-    const double others = std::max({lab * lbc, lbc * lca, lca * lab});
-    if (others > 0) worst_sin2 = std::min(worst_sin2, area2 / others);
-  });
-  const double t = (std::sqrt(worst_sin2) - kSin20) / (kSin30 - kSin20);
-  return float(std::clamp(t, 0.25, 1.0));
-}
-
 }  // namespace
 
 void RegionStrain::reset() {
@@ -57,7 +31,6 @@ void RegionStrain::grow(size_t n) {
   strain_.resize(n, 0.0f);
   scope_stamp_.resize(n, 0);
   unsettled_.resize(n, 0);
-  allowance_.resize(n, 1.0f);
   valence_.resize(n, 0);
   in_region_.resize(n, 0);
 }
@@ -93,8 +66,7 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
         if (de2 > strain2 * e2) strain2 = e2 > 0 ? de2 / e2 : strain2;
       });
       strain_[v.idx] += float(std::sqrt(strain2));
-      const float allowed = allowance_[v.idx] * allowance_[v.idx] * threshold2;
-      active = active || strain_[v.idx] * strain_[v.idx] >= allowed;
+      active = active || strain_[v.idx] * strain_[v.idx] >= threshold2;
     }
     if (active) {
       strain_[v.idx] = 0.0f;
@@ -143,8 +115,6 @@ void RegionStrain::update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh
       unsettled_[v.idx] = frame_ + 1;
     }
   }
-  const Point* p = mesh.positions().data();
-  for (mesh::Vertex v : scope) allowance_[v.idx] = strain_allowance(hc, vh, p, v);
   ++frame_;
   for (mesh::Vertex v : region) {
     position_[v.idx] = mesh.position(v);

@@ -58,7 +58,6 @@ class RegionStrain {
   std::vector<std::uint32_t> scope_stamp_;  // in this frame's scope
   std::vector<std::uint32_t> unsettled_;    // the last iteration changed its connectivity
   std::vector<std::uint16_t> valence_;      // before this frame's iteration (scope vertices)
-  std::vector<float> allowance_;            // of the threshold, from its worst triangle when last remeshed
   std::vector<mesh::Vertex> front_, next_front_;  // the rings' breadth-first search
 };
 

@@ -313,8 +313,7 @@ void BM_PullScene(benchmark::State& state) {
 BENCHMARK(BM_PullScene)->Iterations(1);
 
 // The carried field against a full solve of the same region on the same surface, every frame of
-// the pull (the deformer with the grab's frame plan and one region iteration per frame, as a grab
-// frame runs them).
+// the pull (sculpt::Grab's frames, as a session runs them).
 void BM_PullFieldError(benchmark::State& state) {
   const PullScene& s = scene();
   if (!s.ok) {
@@ -331,14 +330,15 @@ void BM_PullFieldError(benchmark::State& state) {
     o.max_length = s.settings["max_length"];
     o.feature_angle_deg = 0;
     remesh::Remesher remesher(m, o);
-    deform::HandleDeformer d;
-    d.begin(m, s.grab.center, s.grab.handle_radius, s.grab.roi_radius);
+    sculpt::Grab grab;
+    sculpt::FrameTimings timings;
+    sculpt::ChangeSet changes;
+    grab.begin(m, s.grab.center, mesh::Face(), s.grab.handle_radius, s.grab.roi_radius);
     for (int i = 1; i <= kFrames; ++i) {
-      const sculpt::FramePlan plan = sculpt::plan_frame(d.last().region.size(), remesher.sizing_due(), d.options());
-      deform::StepResult& r = d.step(m, s.grab.total_at(double(i) / kFrames), o.epsilon, plan.field);
-      err.push_back(d.field_error_vs_full_solve(m));
-      refreshes = r.field_refreshes;
-      remesher.iterate_region(r.region);
+      grab.drag(m, remesher, s.grab.total_at(double(i) / kFrames), o.epsilon, timings, changes);
+      changes.touched_vertices.clear();
+      err.push_back(grab.deformer().field_error_vs_full_solve(m));
+      refreshes = grab.deformer().last().field_refreshes;
     }
   }
   const double first_refresh = err.empty() ? 0 : err.front();
