@@ -133,7 +133,8 @@ class HandleDeformer {
   void end();
   bool active() const { return active_; }
   // The largest |w - w_full| over the free vertices of the last field computation, where w_full
-  // solves that same system exactly (a factorisation: for measurements and tests only).
+  // solves that same system exactly (a factorisation: for measurements and tests only). May be
+  // called between steps, after the remesher's edits of the region.
   double field_error_vs_full_solve(const SurfaceMesh& mesh);
 
   const Point& center() const { return center_; }

@@ -333,11 +333,17 @@ void BM_PullFieldError(benchmark::State& state) {
     sculpt::Grab grab;
     sculpt::FrameTimings timings;
     sculpt::ChangeSet changes;
+    if (const char* v = std::getenv("ADASCULPT_REMESH_STRAIN")) grab.options().remesh_strain = std::atof(v);
+    if (const char* v = std::getenv("ADASCULPT_FRAME_WORK")) grab.options().frame_work = std::atof(v);
     grab.begin(m, s.grab.center, mesh::Face(), s.grab.handle_radius, s.grab.roi_radius);
     for (int i = 1; i <= kFrames; ++i) {
       grab.drag(m, remesher, s.grab.total_at(double(i) / kFrames), o.epsilon, timings, changes);
       changes.touched_vertices.clear();
-      err.push_back(grab.deformer().field_error_vs_full_solve(m));
+      try {
+        err.push_back(grab.deformer().field_error_vs_full_solve(m));
+      } catch (const std::exception& e) {
+        std::printf("frame %d: %s\n", i, e.what());
+      }
       refreshes = grab.deformer().last().field_refreshes;
     }
   }
