@@ -40,9 +40,11 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   // share, a frame whose region iteration measured the whole sizing again (every 4th; 20M
   // instructions on a 10k-vertex ROI, now spread over the frames for such a region) had 1.5x the
   // instructions of the others, and the first frames of a grab (largest region) 2x the last.
-  // The region work is planned from the last frame's remeshing scope (the first frame remeshes
-  // the whole region, sculpt/region_strain.h).
-  const size_t planned = dragged_ ? scope_.size() : deformer_.last().region.size();
+  // The region work is planned from the recent frames' remeshing scopes (the first frame remeshes
+  // the whole region, sculpt/region_strain.h): the larger of the last one and their running mean,
+  // since the strained vertices come due in waves (the held-out pull's scope went from 2k to 7k
+  // vertices between two frames, and that frame's field had been given the 2k frame's share).
+  const size_t planned = dragged_ ? std::max(scope_.size(), size_t(scope_mean_)) : deformer_.last().region.size();
   plan_ = plan_frame(planned, remesher.sizing_due(), deformer_.options());
   // Never defer for long: the field's solve must go on even when every frame is heavy.
   if (plan_.field.defer_large_steps && ++deferred_in_a_row_ > kMaxDeferredFrames) plan_.field.defer_large_steps = false;
@@ -52,6 +54,7 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   strain_.select(mesh, r.region, deformer_.options().remesh_strain, scope_);
   const remesh::IterationStats st = remesher.iterate_region(scope_);
   strain_.update_region(mesh, r.region, scope_);
+  scope_mean_ = dragged_ ? 0.75 * scope_mean_ + 0.25 * double(scope_.size()) : double(scope_.size());
   dragged_ = true;
   f = FrameTimings{};
   f.roi_ms = r.roi_ms;

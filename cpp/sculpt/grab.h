@@ -63,6 +63,7 @@ class Grab {
   RegionStrain strain_;
   std::vector<mesh::Vertex> scope_;  // the remeshing iteration's part of the region (strain_)
   bool dragged_ = false;             // a frame ran since begin()
+  double scope_mean_ = 0;            // running mean of the scopes' sizes (the frame plan)
   static constexpr int kMaxDeferredFrames = 3;
   static constexpr int kSettlePasses = 2;
   int deferred_in_a_row_ = 0;  // frames in a row whose plan deferred the field's large steps
