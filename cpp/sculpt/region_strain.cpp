@@ -30,6 +30,8 @@ void RegionStrain::grow(size_t n) {
   displacement_.resize(n, Vec3(0.0));
   strain_.resize(n, 0.0f);
   scope_stamp_.resize(n, 0);
+  edge_strain2_.resize(n, 0.0f);
+  next_to_new_.resize(n, 0);
   unsettled_.resize(n, 0);
   valence_.resize(n, 0);
   in_region_.resize(n, 0);
@@ -46,27 +48,39 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
     in_region_[v.idx] = frame_;
     if (known(v)) displacement_[v.idx] = p[v.idx] - position_[v.idx];
   }
+  // Each edge of the region once (from its lower-numbered end): the larger squared strain of
+  // its edges per vertex, and whether a neighbour is new (no position last frame).
+  for (mesh::Vertex v : region) {
+    edge_strain2_[v.idx] = 0.0f;
+    next_to_new_[v.idx] = 0;
+  }
+  for (mesh::Vertex v : region) {
+    const bool v_known = known(v);
+    const Point& pv = p[v.idx];
+    const Vec3& dv = displacement_[v.idx];
+    mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+      const mesh::Index n = hc[h.idx].to.idx;
+      if (n < v.idx || in_region_[n] != frame_) return;
+      if (!v_known || seen_[n] != frame_) {
+        next_to_new_[v.idx] = next_to_new_[n] = 1;
+        return;
+      }
+      const Vec3 e = p[n] - pv, de = displacement_[n] - dv;
+      const double e2 = glm::dot(e, e);
+      if (!(e2 > 0)) return;
+      const float s2 = float(glm::dot(de, de) / e2);
+      edge_strain2_[v.idx] = std::max(edge_strain2_[v.idx], s2);
+      edge_strain2_[n] = std::max(edge_strain2_[n], s2);
+    });
+  }
   const float threshold2 = float(threshold * threshold);
   front_.clear();
   for (mesh::Vertex v : region) {
-    bool active = !known(v) || unsettled_[v.idx] == frame_;
+    // (a new vertex is next to new ones by its own edges: the flag is set for it too)
+    bool active = !known(v) || unsettled_[v.idx] == frame_ || next_to_new_[v.idx];
     if (!active) {
-      const Point& pv = p[v.idx];
-      const Vec3& dv = displacement_[v.idx];
-      double strain2 = 0;  // the largest squared strain of the edges around v
-      mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
-        const mesh::Index n = hc[h.idx].to.idx;
-        if (in_region_[n] != frame_) return;
-        if (seen_[n] != frame_) {  // a vertex added around v since the last frame
-          active = true;
-          return;
-        }
-        const Vec3 e = p[n] - pv, de = displacement_[n] - dv;
-        const double e2 = glm::dot(e, e), de2 = glm::dot(de, de);
-        if (de2 > strain2 * e2) strain2 = e2 > 0 ? de2 / e2 : strain2;
-      });
-      strain_[v.idx] += float(std::sqrt(strain2));
-      active = active || strain_[v.idx] * strain_[v.idx] >= threshold2;
+      strain_[v.idx] += std::sqrt(edge_strain2_[v.idx]);
+      active = strain_[v.idx] * strain_[v.idx] >= threshold2;
     }
     if (active) {
       strain_[v.idx] = 0.0f;
