@@ -12,7 +12,8 @@
 // 0 for a translation, about the stretch for a stretch and the angle for a bend (or a rotation, so
 // a twist is remeshed as before). A vertex is active when its accumulated strain reaches the
 // threshold, when it has no position from the last frame (new, or new to the region; the first
-// frame: all of them) or when such a vertex is its neighbour. The scope of the frame's remeshing is
+// frame: all of them), when such a vertex is its neighbour, or when the last frame's iteration
+// changed its valence (the remesher is still at work there). The scope of the frame's remeshing is
 // the active vertices and kScopeRings rings around them (the outer ring holds the scope's border,
 // Remesher::iterate_region, so the active vertices' neighbours are still relaxed); the active
 // vertices' strain starts again from 0.
@@ -40,7 +41,9 @@ class RegionStrain {
               std::vector<mesh::Vertex>& scope);
   // After the remeshing iteration: `region` (the deformer's list) loses the vertices the
   // iteration removed and gains those it added (they are in `scope`, which the remesher updated);
-  // then every vertex of the region records its position for the next frame.
+  // the vertices it added or whose valence it changed stay in the next scope; then every vertex of
+  // the region records its position for the next frame. (A release calls select with an infinite
+  // threshold: the scope is then those unsettled vertices and their rings, sculpt/grab.h.)
   void update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,
                      const std::vector<mesh::Vertex>& scope);
 
