@@ -61,10 +61,10 @@ struct DeformOptions {
   double field_work_per_frame = 3e6;
   // Carried, in a grab (sculpt/grab.h): the work of a whole frame in the same unit. The field's
   // share is what the frame's refinement and region iteration (estimated from the size of the
-  // last frame's remeshing scope) leave of it, so that heavy and light frames cost alike: 3e6 is
-  // about 35-40M instructions, the frames of a 10k-vertex ROI's pull 6-9 ms natively on this
-  // project's 2-core machine. (It was 5e6 while every frame remeshed the whole region; at 2.5e6
-  // the held-out pull's field was not solved once in 60 frames.)
+  // recent frames' remeshing scopes) leave of it, so that heavy and light frames cost alike: 3.3e6
+  // is about 35-40M instructions, the frames of a 10k-vertex ROI's pull 6-10 ms natively on this
+  // project's 2-core machine. (It was 5e6 while every frame remeshed the whole region; at 3e6 the
+  // held-out pull's field was not solved once in 60 frames.)
   double frame_work = 3.3e6;
   // Vertex budget of the ROI (handle + free vertices) at its computation; 0 = no budget.
   size_t max_roi_vertices = 20000;

@@ -32,6 +32,14 @@ void Grab::begin(const mesh::SurfaceMesh& mesh, const Point& picked, mesh::Face 
   deferred_in_a_row_ = 0;
 }
 
+// One remeshing iteration on scope_ (RegionStrain::select's), then the region follows its edits.
+remesh::IterationStats Grab::remesh_scope(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher,
+                                          std::vector<mesh::Vertex>& region) {
+  const remesh::IterationStats st = remesher.iterate_region(scope_);
+  strain_.update_region(mesh, region, scope_);
+  return st;
+}
+
 void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const deform::HandleTransform& total,
                 double epsilon, FrameTimings& f, ChangeSet& changes) {
   const auto t0 = Clock::now();
@@ -52,8 +60,7 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   deform::StepResult& r = deformer_.step(mesh, total, epsilon, plan_.field);
   const auto t1 = Clock::now();
   strain_.select(mesh, r.region, deformer_.options().remesh_strain, scope_);
-  const remesh::IterationStats st = remesher.iterate_region(scope_);
-  strain_.update_region(mesh, r.region, scope_);
+  const remesh::IterationStats st = remesh_scope(mesh, remesher, r.region);
   scope_mean_ = dragged_ ? 0.75 * scope_mean_ + 0.25 * double(scope_.size()) : double(scope_.size());
   dragged_ = true;
   f = FrameTimings{};
@@ -86,8 +93,7 @@ void Grab::end(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, ChangeSet& c
       strain_.select(mesh, region, std::numeric_limits<double>::infinity(), scope_);
       if (scope_.empty()) break;
       const size_t faces_before = mesh.faces_size();
-      const remesh::IterationStats st = remesher.iterate_region(scope_);
-      strain_.update_region(mesh, region, scope_);
+      const remesh::IterationStats st = remesh_scope(mesh, remesher, region);
       if (st.splits + st.collapses + st.flips > 0 || mesh.faces_size() != faces_before) changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), scope_.begin(), scope_.end());
     }

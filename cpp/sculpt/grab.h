@@ -18,7 +18,8 @@ namespace adasculpt::sculpt {
 // The plan of a grab frame, in the field solve's unit (multiply-adds, about 10 instructions each
 // natively; counted from sizes, not timed, so that a replay does the same everywhere): the
 // refinement and the region iteration cost about kRegionWorkPerVertex per vertex the frame
-// remeshes (planned from the last frame's remeshing scope; a large region measures a slice of its sizing in every call, remesher.h), a region iteration
+// remeshes (planned from the recent frames' remeshing scopes, Grab::drag; a large scope measures a
+// slice of its sizing in every call, remesher.h), a region iteration
 // that measures the sizing of its whole scope again (Remesher::sizing_due: a small region, every
 // 4th call) about kSizingWorkPerVertex more; the field's amortised solve gets what is left of
 // DeformOptions::frame_work, at least kMinFieldFraction of it. Such a heavier frame also leaves
@@ -58,6 +59,9 @@ class Grab {
   const FramePlan& last_plan() const { return plan_; }
 
  private:
+  remesh::IterationStats remesh_scope(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher,
+                                      std::vector<mesh::Vertex>& region);
+
   deform::HandleDeformer deformer_;
   FramePlan plan_;
   RegionStrain strain_;

@@ -47,13 +47,11 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
   for (mesh::Vertex v : region) {
     in_region_[v.idx] = frame_;
     if (known(v)) displacement_[v.idx] = p[v.idx] - position_[v.idx];
-  }
-  // Each edge of the region once (from its lower-numbered end): the larger squared strain of
-  // its edges per vertex, and whether a neighbour is new (no position last frame).
-  for (mesh::Vertex v : region) {
     edge_strain2_[v.idx] = 0.0f;
     next_to_new_[v.idx] = 0;
   }
+  // Each edge of the region once (from its lower-numbered end): the larger squared strain of
+  // its edges per vertex, and whether a neighbour is new (no position last frame).
   for (mesh::Vertex v : region) {
     const bool v_known = known(v);
     const Point& pv = p[v.idx];
@@ -76,7 +74,6 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
   const float threshold2 = float(threshold * threshold);
   front_.clear();
   for (mesh::Vertex v : region) {
-    // (a new vertex is next to new ones by its own edges: the flag is set for it too)
     bool active = !known(v) || unsettled_[v.idx] == frame_ || next_to_new_[v.idx];
     if (!active) {
       strain_[v.idx] += std::sqrt(edge_strain2_[v.idx]);

@@ -171,9 +171,10 @@ TEST(GrabFramePlan, ALargeRegionMeasuresItsSizingASliceAtATime) {
       EXPECT_FALSE(rig.remesher->sizing_due()) << "frame " << i;
     }
     // The frame after a large one planned no sizing measurement.
-    if (i > 1 && last_was_large)
+    if (i > 1 && last_was_large) {
       EXPECT_DOUBLE_EQ(rig.grab.last_plan().region_work, last_remeshed * sculpt::FramePlan::kRegionWorkPerVertex)
           << "frame " << i;
+    }
     last_was_large = large;
     last_remeshed = rig.timings.remeshed_vertices;
   }

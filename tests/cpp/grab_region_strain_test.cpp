@@ -49,6 +49,23 @@ std::vector<Vertex> frame(sculpt::RegionStrain& strain, const mesh::SurfaceMesh&
   return scope;
 }
 
+std::set<mesh::Index> indices(const std::vector<Vertex>& vertices) {
+  std::set<mesh::Index> r;
+  for (Vertex v : vertices) r.insert(v.idx);
+  return r;
+}
+
+// A sphere whose every vertex is the region, after a grab's first frame (which takes them all).
+struct SphereAfterFirstFrame {
+  mesh::SurfaceMesh m = mesh::make_icosphere(3);
+  std::vector<Vertex> region = all_vertices(m);
+  sculpt::RegionStrain strain;
+  SphereAfterFirstFrame() {
+    strain.reset();
+    frame(strain, m, region, 0.1);
+  }
+};
+
 }  // namespace
 
 TEST(RegionStrain, FirstFrameTakesAllThenARigidMotionTakesNothing) {
@@ -65,11 +82,8 @@ TEST(RegionStrain, FirstFrameTakesAllThenARigidMotionTakesNothing) {
 }
 
 TEST(RegionStrain, AStrainedVertexTakesItselfAndTwoRingsOnceItsStrainAddsUp) {
-  mesh::SurfaceMesh m = mesh::make_icosphere(3);
-  std::vector<Vertex> region = all_vertices(m);
-  sculpt::RegionStrain strain;
-  strain.reset();
-  frame(strain, m, region, 0.1);
+  SphereAfterFirstFrame s;
+  auto& [m, region, strain] = s;
   const Vertex moved(0);
   double edge = 1e300;
   for (Vertex w : m.vertices(moved)) edge = std::min(edge, glm::length(m.position(w) - m.position(moved)));
@@ -84,9 +98,7 @@ TEST(RegionStrain, AStrainedVertexTakesItselfAndTwoRingsOnceItsStrainAddsUp) {
       continue;
     }
     // The moved vertex and its neighbours are strained; the scope adds two rings around them.
-    std::set<mesh::Index> got;
-    for (Vertex v : scope) got.insert(v.idx);
-    EXPECT_EQ(got, within_rings(m, moved, 1 + sculpt::RegionStrain::kScopeRings));
+    EXPECT_EQ(indices(scope), within_rings(m, moved, 1 + sculpt::RegionStrain::kScopeRings));
   }
   // Strain starts again from 0 for what was taken.
   m.position(moved) += 0.04 * edge * out;
@@ -94,11 +106,8 @@ TEST(RegionStrain, AStrainedVertexTakesItselfAndTwoRingsOnceItsStrainAddsUp) {
 }
 
 TEST(RegionStrain, ANewVertexTakesItsNeighbourhoodAndAnUndoneGrabLeavesNoTrace) {
-  mesh::SurfaceMesh m = mesh::make_icosphere(3);
-  std::vector<Vertex> region = all_vertices(m);
-  sculpt::RegionStrain strain;
-  strain.reset();
-  frame(strain, m, region, 0.1);
+  SphereAfterFirstFrame s;
+  auto& [m, region, strain] = s;
   // A split (as the refinement makes): the new vertex joins the region.
   const mesh::Edge e = *m.edges().begin();
   const Vertex a = m.vertex(e, 0), b = m.vertex(e, 1);
@@ -106,9 +115,7 @@ TEST(RegionStrain, ANewVertexTakesItsNeighbourhoodAndAnUndoneGrabLeavesNoTrace) 
   region.push_back(added);
   std::vector<Vertex> scope;
   strain.select(m, region, 0.1, scope);
-  std::set<mesh::Index> got;
-  for (Vertex v : scope) got.insert(v.idx);
-  EXPECT_EQ(got, within_rings(m, added, 1 + sculpt::RegionStrain::kScopeRings));
+  EXPECT_EQ(indices(scope), within_rings(m, added, 1 + sculpt::RegionStrain::kScopeRings));
   strain.update_region(m, region, scope);
   // A new grab knows nothing of the last one's vertices.
   strain.reset();
