@@ -59,6 +59,9 @@ void print_table(const std::string& path, const geometry::QualityReport& r,
     std::printf("  distance to %s\n", reference.c_str());
     std::printf("    rms                      %.6g (%.3e of diagonal)\n", d->rms, d->rms_rel);
     std::printf("    hausdorff                %.6g (%.3e of diagonal)\n", d->hausdorff, d->hausdorff_rel);
+    std::printf("      reached at             (%.6g, %.6g, %.6g) on the %s, closest (%.6g, %.6g, %.6g)\n",
+                d->hausdorff_at.x, d->hausdorff_at.y, d->hausdorff_at.z, d->hausdorff_on_reference ? "reference" : "mesh",
+                d->hausdorff_closest.x, d->hausdorff_closest.y, d->hausdorff_closest.z);
   }
 }
 
@@ -101,6 +104,9 @@ void run_stats(const StatsOptions& o) {
     out["hausdorff"] = distance->hausdorff;
     out["rms_rel"] = distance->rms_rel;
     out["hausdorff_rel"] = distance->hausdorff_rel;
+    const Point& at = distance->hausdorff_at;
+    out["hausdorff_at"] = {at.x, at.y, at.z};
+    out["hausdorff_on_reference"] = distance->hausdorff_on_reference;
     out["samples"] = o.samples;
   }
   if (si) {

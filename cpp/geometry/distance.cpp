@@ -20,6 +20,7 @@ namespace {
 
 struct OneWay {
   double rms = 0, hausdorff = 0;
+  Point at{0.0}, closest{0.0};  // where the largest distance is reached, and its closest point
 };
 
 // A double in [0, 1) from 53 random bits: std::uniform_real_distribution is
@@ -49,7 +50,11 @@ OneWay one_way(const TriangleTree& source, const TriangleTree& target, size_t sa
       const Point p = (1 - s) * a + (s * (1 - r)) * b + (s * r) * c;
       hint = target.closest_point(p, hint);
       sum2 += hint.distance2;
-      out.hausdorff = std::max(out.hausdorff, hint.distance2);
+      if (hint.distance2 > out.hausdorff) {
+        out.hausdorff = hint.distance2;
+        out.at = p;
+        out.closest = hint.point;
+      }
     }
   }
   out.rms = taken > 0 ? std::sqrt(sum2 / taken) : 0.0;
@@ -59,7 +64,11 @@ OneWay one_way(const TriangleTree& source, const TriangleTree& target, size_t sa
   for (size_t i = 0; i < pts.size(); ++i) {
     if (!used[i]) continue;
     hint = target.closest_point(pts[i], hint);
-    out.hausdorff = std::max(out.hausdorff, hint.distance2);
+    if (hint.distance2 > out.hausdorff) {
+      out.hausdorff = hint.distance2;
+      out.at = pts[i];
+      out.closest = hint.point;
+    }
   }
   out.hausdorff = std::sqrt(out.hausdorff);
   return out;
@@ -77,6 +86,9 @@ DistanceReport distance_between(const mesh::SurfaceMesh& mesh, const mesh::Surfa
   DistanceReport d;
   d.rms = std::max(ab.rms, ba.rms);
   d.hausdorff = std::max(ab.hausdorff, ba.hausdorff);
+  d.hausdorff_on_reference = ba.hausdorff > ab.hausdorff;
+  d.hausdorff_at = d.hausdorff_on_reference ? ba.at : ab.at;
+  d.hausdorff_closest = d.hausdorff_on_reference ? ba.closest : ab.closest;
   const double diag = bounding_box_diagonal(reference);
   if (diag > 0) {
     d.rms_rel = d.rms / diag;

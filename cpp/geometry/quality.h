@@ -41,6 +41,10 @@ TriangleAngles triangle_angle_extremes(const Point& a, const Point& b, const Poi
 struct DistanceReport {
   double rms = 0, hausdorff = 0;
   double rms_rel = 0, hausdorff_rel = 0;  // divided by the reference's bounding-box diagonal
+  // Where the Hausdorff distance is reached: a point of the mesh (hausdorff_on_reference false) or
+  // of the reference, and the closest point to it on the other surface.
+  Point hausdorff_at{0.0}, hausdorff_closest{0.0};
+  bool hausdorff_on_reference = false;
 };
 
 // `samples` points per direction spread over the source surface in proportion to triangle

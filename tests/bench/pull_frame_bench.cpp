@@ -122,6 +122,7 @@ PullScene make_scene(const std::string& path, const char* session_file, double e
   grab_step.kind = sculpt::SessionStep::Kind::Grab;
   grab_step.grab = r.grab;
   file.steps = {remesh_step, grab_step};
+  if (epsilon_scale != 1.0) file.settings = sculpt::parse_settings({{"epsilon", r.settings["epsilon"]}});
   std::filesystem::create_directories("build/bench");
   std::ofstream(session_file) << sculpt::to_json(file).dump(1) << "\n";
   return r;
@@ -142,7 +143,9 @@ const PullScene& held_out_scene() {
   static const PullScene s = [] {
     const char* other = std::getenv("ADASCULPT_PULL_MESH");
     const char* scale = std::getenv("ADASCULPT_PULL_EPSILON_SCALE");
-    return make_scene(cgal_mesh(other ? other : kHeldOutMesh), nullptr, scale ? std::atof(scale) : 0.6);
+    // ADASCULPT_PULL_SESSION: write this scene as a session file there too (adasculpt replay).
+    return make_scene(cgal_mesh(other ? other : kHeldOutMesh), std::getenv("ADASCULPT_PULL_SESSION"),
+                      scale ? std::atof(scale) : 0.6);
   }();
   return s;
 }

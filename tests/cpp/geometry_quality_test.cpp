@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "geometry/quality.h"
@@ -112,4 +113,22 @@ TEST(GeometryQuality, DistanceOfAScaledCube) {
   // Deterministic: the same call gives bit-identical figures.
   DistanceReport again = distance_between(scaled(cube, 1.01), cube, 50000);
   EXPECT_EQ(again.rms, d.rms);
+}
+
+TEST(GeometryQuality, HausdorffDistanceSaysWhereItIsReached) {
+  // One vertex of an icosphere pushed out: the distance is reached at that vertex, on the mesh,
+  // and its closest point on the reference is under it; swapped, on the reference's side.
+  mesh::SurfaceMesh sphere = mesh::make_icosphere(2);
+  mesh::SurfaceMesh bumped = sphere;
+  const mesh::Vertex tip(7);
+  bumped.position(tip) *= 1.2;
+  DistanceReport d = distance_between(bumped, sphere, 20000);
+  EXPECT_FALSE(d.hausdorff_on_reference);
+  EXPECT_EQ(d.hausdorff_at, bumped.position(tip));
+  EXPECT_NEAR(glm::length(d.hausdorff_at - d.hausdorff_closest), d.hausdorff, 1e-12);
+  EXPECT_LT(glm::length(d.hausdorff_closest - sphere.position(tip)), 0.2 * d.hausdorff);
+  DistanceReport swapped = distance_between(sphere, bumped, 20000);
+  EXPECT_TRUE(swapped.hausdorff_on_reference);
+  EXPECT_EQ(swapped.hausdorff_at, bumped.position(tip));
+  EXPECT_DOUBLE_EQ(swapped.hausdorff, d.hausdorff);
 }
