@@ -28,6 +28,11 @@ void Grab::begin(const mesh::SurfaceMesh& mesh, const Point& picked, mesh::Face 
   deformer_.begin(mesh, picked, picked_face, handle_radius, roi_radius);
   strain_.reset();
   scope_.clear();
+  footprint_.clear();
+  if (++grab_ == 0) {  // (stamps of 2^32 grabs ago could match)
+    std::fill(footprint_stamp_.begin(), footprint_stamp_.end(), 0u);
+    grab_ = 1;
+  }
   dragged_ = false;
   deferred_in_a_row_ = 0;
 }
@@ -61,6 +66,12 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
   const auto t1 = Clock::now();
   strain_.select(mesh, r.region, deformer_.options().remesh_strain, scope_);
   const remesh::IterationStats st = remesh_scope(mesh, remesher, r.region);
+  if (footprint_stamp_.size() < mesh.vertices_size()) footprint_stamp_.resize(mesh.vertices_size(), 0u);
+  for (mesh::Vertex v : r.region)
+    if (footprint_stamp_[v.idx] != grab_) {
+      footprint_stamp_[v.idx] = grab_;
+      footprint_.push_back(v);
+    }
   scope_mean_ = dragged_ ? 0.75 * scope_mean_ + 0.25 * double(scope_.size()) : double(scope_.size());
   dragged_ = true;
   f = FrameTimings{};
@@ -83,17 +94,14 @@ void Grab::drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const defor
 }
 
 void Grab::end(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, ChangeSet& changes) {
-  // The last frames' iterations may have left work around the vertices whose connectivity they
-  // changed (a split at the scope's held border leaves its new vertex unrelaxed until the next
-  // frame): a release settles it, a pass or two over those vertices and two rings. Nothing moves
-  // any more, so only they are active (an infinite strain threshold).
   if (dragged_) {
-    std::vector<mesh::Vertex>& region = deformer_.region();
+    footprint_.erase(std::remove_if(footprint_.begin(), footprint_.end(), [&](mesh::Vertex v) { return mesh.is_deleted(v); }),
+                     footprint_.end());
     for (int pass = 0; pass < kSettlePasses; ++pass) {
-      strain_.select(mesh, region, std::numeric_limits<double>::infinity(), scope_);
+      strain_.select_release(mesh, footprint_, kMendAngleDeg, scope_);
       if (scope_.empty()) break;
       const size_t faces_before = mesh.faces_size();
-      const remesh::IterationStats st = remesh_scope(mesh, remesher, region);
+      const remesh::IterationStats st = remesh_scope(mesh, remesher, footprint_);
       if (st.splits + st.collapses + st.flips > 0 || mesh.faces_size() != faces_before) changes.topology_changed = true;
       changes.touched_vertices.insert(changes.touched_vertices.end(), scope_.begin(), scope_.end());
     }

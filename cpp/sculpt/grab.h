@@ -45,10 +45,16 @@ class Grab {
   // One frame; fills `timings` (every phase, roi_capped) and appends to `changes`.
   void drag(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, const deform::HandleTransform& total,
             double epsilon, FrameTimings& timings, ChangeSet& changes);
-  // The release: settles what the last frames' iterations left unfinished (at most
-  // kSettlePasses region iterations over the vertices whose connectivity they changed, and two
-  // rings), appending to `changes`.
+  // The release: settles what the frames' iterations left unfinished, appending to `changes`: at
+  // most kSettlePasses region iterations over the vertices whose connectivity the last iteration
+  // changed and the corners of the triangles under kMendAngleDeg, with two rings, anywhere in the
+  // grab's footprint (every vertex its regions held). The ROI follows the surface as it deforms,
+  // and a part that leaves it keeps what the last frame it was in left there: on the pull of
+  // cgal/femur.off the worst triangles after the grab (21.8 degrees) lay outside the last ROI.
   void end(mesh::SurfaceMesh& mesh, remesh::Remesher& remesher, ChangeSet& changes);
+  // The whole-mesh remesh leaves no triangle under 25 degrees that a vertex move can mend
+  // (remesher.cpp's polish); a release gives the grab's footprint the same goal.
+  static constexpr double kMendAngleDeg = 25.0;
   bool active() const { return deformer_.active(); }
   // The field solve (carried by default, or every frame as in the paper) and the ROI's vertex
   // budget; they apply from the next begin().
@@ -66,6 +72,11 @@ class Grab {
   FramePlan plan_;
   RegionStrain strain_;
   std::vector<mesh::Vertex> scope_;  // the remeshing iteration's part of the region (strain_)
+  // Every vertex a frame's region held since begin() (stamped with grab_ per slot; deleted ones
+  // are dropped at the release).
+  std::vector<mesh::Vertex> footprint_;
+  std::vector<std::uint32_t> footprint_stamp_;
+  std::uint32_t grab_ = 0;
   bool dragged_ = false;             // a frame ran since begin()
   double scope_mean_ = 0;            // running mean of the scopes' sizes (the frame plan)
   static constexpr int kMaxDeferredFrames = 3;

@@ -16,6 +16,21 @@ std::uint16_t valence(const mesh::SurfaceMesh::HalfedgeConnectivity* hc, const m
   return n;
 }
 
+// Squared sine of the triangle's smallest angle, the one opposite its shortest edge (0 when
+// degenerate).
+double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
+  const Vec3 n = glm::cross(ab, -ca);
+  const double n2 = glm::dot(n, n);
+  // |ab x ac|^2 = |ab|^2 |ac|^2 sin^2(A): the angle at a is opposite bc, and so on.
+  double sides;
+  if (lbc <= lab && lbc <= lca) sides = lab * lca;
+  else if (lca <= lab) sides = lab * lbc;
+  else sides = lbc * lca;
+  return sides > 0 ? n2 / sides : 0.0;
+}
+
 }  // namespace
 
 void RegionStrain::reset() {
@@ -85,6 +100,13 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
       front_.push_back(v);
     }
   }
+  grow_scope(mesh, region, scope);
+}
+
+void RegionStrain::grow_scope(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& region,
+                              std::vector<mesh::Vertex>& scope) {
+  const auto* hc = mesh.halfedge_connectivity_data();
+  const mesh::Halfedge* vh = mesh.vertex_halfedge_data();
   // The rings around the active vertices, breadth first, within the region.
   for (int ring = 0; ring < kScopeRings; ++ring) {
     next_front_.clear();
@@ -103,6 +125,31 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
       scope.push_back(v);
       valence_[v.idx] = valence(hc, vh, v);
     }
+}
+
+void RegionStrain::select_release(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& footprint,
+                                  double poor_angle_deg, std::vector<mesh::Vertex>& scope) {
+  grow(mesh.vertices_size());
+  for (mesh::Vertex v : footprint) in_region_[v.idx] = frame_;
+  const double s = std::sin(poor_angle_deg * M_PI / 180.0);
+  const double poor_sin2 = s * s;
+  front_.clear();
+  auto activate = [&](mesh::Vertex v) {
+    if (in_region_[v.idx] != frame_ || scope_stamp_[v.idx] == frame_) return;
+    scope_stamp_[v.idx] = frame_;
+    front_.push_back(v);
+  };
+  for (mesh::Vertex v : footprint) {
+    if (unsettled_[v.idx] == frame_) activate(v);
+    // Every corner of a poor triangle (one with corners in the footprint is looked at from each).
+    for (mesh::Face f : mesh.faces(v)) {
+      mesh::Vertex c[3];
+      mesh.face_vertices(f, c);
+      if (min_angle_sin2(mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2])) < poor_sin2)
+        for (mesh::Vertex w : c) activate(w);
+    }
+  }
+  grow_scope(mesh, footprint, scope);
 }
 
 void RegionStrain::update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,

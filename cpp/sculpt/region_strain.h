@@ -46,8 +46,18 @@ class RegionStrain {
   // threshold: the scope is then those unsettled vertices and their rings, sculpt/grab.h.)
   void update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,
                      const std::vector<mesh::Vertex>& scope);
+  // The release's scope (sculpt/grab.h), within `footprint` (every vertex the grab's regions held,
+  // live): the vertices the last iteration left unsettled and the corners of the triangles under
+  // `poor_angle_deg` there, and kScopeRings rings around them. Nothing moves any more, so strain
+  // plays no part. Then update_region(mesh, footprint, scope) after the iteration, as for a frame.
+  void select_release(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& footprint,
+                      double poor_angle_deg, std::vector<mesh::Vertex>& scope);
 
  private:
+  // scope = the vertices in front_ (stamped in scope_stamp_) and kScopeRings rings around them
+  // within this frame's region, in the region's order.
+  void grow_scope(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& region,
+                  std::vector<mesh::Vertex>& scope);
   void grow(size_t n);
   bool known(mesh::Vertex v) const { return seen_[v.idx] == frame_; }
 

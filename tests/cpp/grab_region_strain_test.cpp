@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -11,6 +12,7 @@
 
 #include "geometry/quality.h"
 #include "mesh/primitives.h"
+#include "sculpt/grab.h"
 #include "sculpt/region_strain.h"
 #include "sculpt/session.h"
 #include "undo_test_util.h"
@@ -154,9 +156,51 @@ TEST(RegionStrain, APullRemeshesWhatItStrainsAndKeepsTheQualityOfTheWholeRegion)
               strained.pct_min_angle_lt_30, whole.pct_min_angle_lt_30);
   EXPECT_GE(whole_fraction, 1.0);  // the ROI and a ring
   EXPECT_LT(strained_fraction, 0.75 * whole_fraction);
-  EXPECT_GE(strained.min_angle_deg, 20.0);
+  // The release mends the footprint's triangles under 25 degrees (sculpt/grab.h), as the polish
+  // of a whole-mesh remesh does.
+  EXPECT_GE(strained.min_angle_deg, sculpt::Grab::kMendAngleDeg);
   EXPECT_GE(strained.mean_min_angle_deg, whole.mean_min_angle_deg - 1.0);
   EXPECT_LE(strained.pct_min_angle_lt_30, whole.pct_min_angle_lt_30 + 0.5);
   // The pulled tip went as far either way (the handle moves rigidly, remeshed or not).
   EXPECT_NEAR(strained_top, whole_top, 0.02);
+}
+
+// The release's scope: the corners of the triangles under the angle anywhere in the footprint
+// (not only the last frame's region) and two rings, within the footprint; nothing where all is
+// well shaped.
+TEST(RegionStrain, TheReleaseTakesThePoorTrianglesOfTheFootprintAndTwoRings) {
+  SphereAfterFirstFrame s;
+  auto& [m, region, strain] = s;
+  std::vector<Vertex> scope;
+  strain.select_release(m, region, 25.0, scope);
+  EXPECT_TRUE(scope.empty()) << "an icosphere has no triangle under 25 degrees";
+  // One vertex pushed most of the way to a neighbour: the triangles beside that edge get thin.
+  const Vertex v(0);
+  const Vertex w = *m.vertices(v).begin();
+  m.position(v) += 0.8 * (m.position(w) - m.position(v));
+  std::set<mesh::Index> poor_corners;
+  for (mesh::Face f : m.faces()) {
+    Vertex c[3];
+    m.face_vertices(f, c);
+    const Point &a = m.position(c[0]), &b = m.position(c[1]), &d = m.position(c[2]);
+    auto angle = [](const Point& p, const Point& x, const Point& y) {
+      return std::acos(glm::dot(glm::normalize(x - p), glm::normalize(y - p))) * 180.0 / M_PI;
+    };
+    if (std::min({angle(a, b, d), angle(b, d, a), angle(d, a, b)}) < 25.0)
+      for (Vertex u : c) poor_corners.insert(u.idx);
+  }
+  ASSERT_FALSE(poor_corners.empty());
+  std::set<mesh::Index> expected;
+  for (mesh::Index i : poor_corners) {
+    const std::set<mesh::Index> near = within_rings(m, Vertex(i), sculpt::RegionStrain::kScopeRings);
+    expected.insert(near.begin(), near.end());
+  }
+  strain.select_release(m, region, 25.0, scope);
+  EXPECT_EQ(indices(scope), expected);
+  // Only within the footprint: without v's half of the sphere, none of it.
+  std::vector<Vertex> half;
+  for (Vertex u : region)
+    if (glm::dot(m.position(u), m.position(v)) < 0) half.push_back(u);
+  strain.select_release(m, half, 25.0, scope);
+  EXPECT_TRUE(scope.empty());
 }
