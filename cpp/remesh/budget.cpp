@@ -22,7 +22,6 @@
 #include <glm/geometric.hpp>
 
 #include "remesh/remesher_impl.h"
-#include "remesh/sizing.h"
 
 namespace adasculpt::remesh {
 
@@ -34,9 +33,10 @@ void Remesher::Impl::estimate_vertex_budget() {
   const auto& pts = tree.points();
   double estimate = 0;
   for (const auto& t : tree.triangles()) {
-    const Point corner[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};
-    const double value[3] = {ref_sizing[t[0]], ref_sizing[t[1]], ref_sizing[t[2]]};
-    estimate += inverse_square_sizing_integral(corner, value, kGradation, sizing_ceiling());
+    const double area = 0.5 * glm::length(glm::cross(pts[t[1]] - pts[t[0]], pts[t[2]] - pts[t[0]]));
+    double inverse_square = 0;
+    for (std::uint32_t i : t) inverse_square += 1.0 / std::max(ref_sizing[i] * ref_sizing[i], 1e-300);
+    estimate += area * inverse_square / 3.0;
   }
   estimate *= kVerticesPerUnitArea;
   report.estimated_vertices = estimate;

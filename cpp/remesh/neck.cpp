@@ -18,7 +18,6 @@
 #include "geometry/triangle.h"
 #include "remesh/remesher_impl.h"
 #include "remesh/sizing.h"
-#include "remesh/sizing.h"
 
 namespace adasculpt::remesh {
 
@@ -225,10 +224,7 @@ void Remesher::Impl::lower_reference_sizing(const Point& centre, double size,
 // cannot carry its size: the interpolated value put the neck's vertices back at 2-3 times it.
 double Remesher::Impl::sizing_of_hit(const geometry::TriangleTree::ClosestHit& hit) const {
   const auto& t = tree.triangles()[hit.triangle];
-  const auto& pts = tree.points();
-  const Point corner[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};
-  const double value[3] = {ref_sizing[t[0]], ref_sizing[t[1]], ref_sizing[t[2]]};
-  double size = sizing_inside_triangle(corner, value, hit.point, hit.bary, kGradation, sizing_ceiling());
+  double size = hit.bary[0] * ref_sizing[t[0]] + hit.bary[1] * ref_sizing[t[1]] + hit.bary[2] * ref_sizing[t[2]];
   if (!necks.empty() && (ref_near_neck[t[0]] || ref_near_neck[t[1]] || ref_near_neck[t[2]]))
     for (const Neck& n : necks) size = std::min(size, n.size + kGradation * glm::length(hit.point - n.centre));
   return size;

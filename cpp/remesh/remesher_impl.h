@@ -238,8 +238,6 @@ struct Remesher::Impl : RemeshScratch {
                                  std::initializer_list<std::uint32_t> seeds);
   void lower_reference_sizing(const Point& centre, double size, std::initializer_list<std::uint32_t> triangles);
   double sizing_of_hit(const geometry::TriangleTree::ClosestHit& hit) const;
-  // The largest sizing a point may get: the max length (adaptive) or the one length (uniform).
-  double sizing_ceiling() const { return opt.adaptive ? opt.max_length : opt.target_length; }
 
   // ---- zero-area input triangles (degenerate.cpp): collapses and flips that leave the surface
   // as it is; returns the repairs done. Before the reference is built, without the crossing guard.

@@ -23,57 +23,6 @@ double sizing_from_curvature(double kappa, double epsilon, double min_length, do
   return std::clamp(std::sqrt(squared), min_length, max_length);
 }
 
-namespace {
-double longest_edge(const Point c[3]) {
-  return std::sqrt(std::max({glm::dot(c[1] - c[0], c[1] - c[0]), glm::dot(c[2] - c[1], c[2] - c[1]),
-                             glm::dot(c[0] - c[2], c[0] - c[2])}));
-}
-// How far the triangle is into the coarse regime: 0 up to kFineTriangle x its smallest value, 1
-// from kCoarseTriangle x, linear between (neighbouring triangles of different sizes then differ
-// less in the rule they follow).
-double coarseness(const Point corner[3], const double value[3]) {
-  const double ratio = longest_edge(corner) / std::max(std::min({value[0], value[1], value[2]}), 1e-300);
-  return std::clamp((ratio - kFineTriangle) / (kCoarseTriangle - kFineTriangle), 0.0, 1.0);
-}
-// Largest number of parts an edge of a coarse triangle is cut into for the estimate: 32^2 samples.
-constexpr int kMaxEstimateDivisions = 32;
-}  // namespace
-
-double sizing_inside_triangle(const Point corner[3], const double value[3], const Point& p, const double bary[3],
-                              double gradation, double max_length) {
-  const double interpolated = bary[0] * value[0] + bary[1] * value[1] + bary[2] * value[2];
-  const double weight = coarseness(corner, value);
-  if (weight == 0) return interpolated;
-  double graded = max_length;
-  for (int i = 0; i < 3; ++i) graded = std::min(graded, value[i] + gradation * glm::length(p - corner[i]));
-  return interpolated + weight * std::max(0.0, graded - interpolated);
-}
-
-double inverse_square_sizing_integral(const Point corner[3], const double value[3], double gradation,
-                                      double max_length) {
-  const double area = 0.5 * glm::length(glm::cross(corner[1] - corner[0], corner[2] - corner[0]));
-  auto inverse_square = [](double l) { return 1.0 / std::max(l * l, 1e-300); };
-  if (coarseness(corner, value) == 0)
-    return area * (inverse_square(value[0]) + inverse_square(value[1]) + inverse_square(value[2])) / 3.0;
-  // The n^2 triangles of the regular subdivision, each sampled at its centroid: n(n+1)/2 upward
-  // ones at ((i + 1/3) / n, (j + 1/3) / n), n(n-1)/2 downward at ((i + 2/3) / n, (j + 2/3) / n).
-  const double smallest = std::min({value[0], value[1], value[2]});
-  const int n = static_cast<int>(
-      std::min<double>(kMaxEstimateDivisions, std::ceil(longest_edge(corner) / std::max(smallest, 1e-300))));
-  double sum = 0;
-  auto sample = [&](double u, double v) {
-    const double bary[3] = {1.0 - u - v, u, v};
-    const Point p = bary[0] * corner[0] + bary[1] * corner[1] + bary[2] * corner[2];
-    sum += inverse_square(sizing_inside_triangle(corner, value, p, bary, gradation, max_length));
-  };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; i + j < n; ++j) {
-      sample((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);
-      if (i + j + 1 < n) sample((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);
-    }
-  return area * sum / (double(n) * n);
-}
-
 void limit_sizing_gradation(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& vertices,
                             mesh::VertexProperty<double>& sizing, double gradation,
                             const std::vector<std::uint8_t>* inside) {

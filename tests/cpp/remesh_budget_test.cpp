@@ -18,7 +18,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "geometry/quality.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
 #include "mesh/primitives.h"
@@ -126,53 +125,6 @@ TEST(RemeshBudget, EstimateMatchesTheRemeshedVertexCount) {
   EXPECT_LT(double(m.n_vertices()), 2.0 * r.estimated_vertices);
   EXPECT_GE(r.vertex_budget, size_t(2 * r.estimated_vertices));
   EXPECT_TRUE(r.warning.empty());
-}
-
-TEST(RemeshBudget, SizingInsideALargeTriangleGrowsFromItsCornersByTheGradation) {
-  const double gradation = 0.2, max_length = 0.5;
-  const Point corner[3] = {Point(0, 0, 0), Point(10, 0, 0), Point(0, 10, 0)};
-  const double value[3] = {0.01, 0.02, 0.04};
-  auto at = [&](double u, double v) {
-    const double bary[3] = {1 - u - v, u, v};
-    const Point p = bary[0] * corner[0] + bary[1] * corner[1] + bary[2] * corner[2];
-    return remesh::sizing_inside_triangle(corner, value, p, bary, gradation, max_length);
-  };
-  // At a corner its own value; along the way from it, the value + gradation x distance; inside
-  // the face, away from the corners, the max length (the interpolation would give about 0.02).
-  EXPECT_NEAR(at(0, 0), 0.01, 1e-15);
-  EXPECT_NEAR(at(0.1, 0), 0.01 + gradation * 1.0, 1e-12);
-  EXPECT_NEAR(at(1.0 / 3, 1.0 / 3), max_length, 1e-15);
-  // A triangle a little larger than its values is interpolated, as on a scan.
-  const Point small[3] = {Point(0, 0, 0), Point(0.03, 0, 0), Point(0, 0.03, 0)};
-  const double bary[3] = {0.2, 0.3, 0.5};
-  const Point p = 0.2 * small[0] + 0.3 * small[1] + 0.5 * small[2];
-  EXPECT_DOUBLE_EQ(remesh::sizing_inside_triangle(small, value, p, bary, gradation, max_length),
-                   0.2 * 0.01 + 0.3 * 0.02 + 0.5 * 0.04);
-  // Never below the interpolation: close to the small corner of a long triangle whose other
-  // corners ask for much more.
-  for (double u : {0.0, 0.05, 0.3, 0.6, 0.9})
-    for (double v = 0; u + v <= 1; v += 0.1) {
-      const double b[3] = {1 - u - v, u, v};
-      EXPECT_GE(at(u, v), b[0] * value[0] + b[1] * value[1] + b[2] * value[2] - 1e-15) << u << " " << v;
-    }
-}
-
-TEST(RemeshBudget, CoarseCadFacesAreNotFilledWithTheMinLength) {
-  // A cube of 12 triangles at a fine tolerance: its corners and edges see a sharp turn (the min
-  // length) but its faces are flat. Interpolated over each face, the corners' sizing asked for
-  // min-length edges everywhere: 10,642 vertices. Graded from the corners, the faces get long
-  // edges, and the fidelity check keeps the creases: the same Hausdorff distance.
-  const SurfaceMesh cube = mesh::make_box(1, 1, 1);
-  SurfaceMesh m = cube;
-  remesh::RemeshOptions o = adaptive(cube, 0.01, 0.02, 5);
-  o.iterations = 5;
-  const remesh::RemeshReport r = remesh::remesh(m, o);
-  EXPECT_TRUE(r.warning.empty()) << r.warning;
-  EXPECT_NO_THROW(m.validate());
-  EXPECT_LT(r.estimated_vertices, 2000);
-  EXPECT_LT(m.n_vertices(), 2500u);
-  const geometry::DistanceReport d = geometry::distance_between(m, cube, 50000);
-  EXPECT_LE(d.hausdorff, 2 * o.epsilon);
 }
 
 TEST(RemeshBudget, RunawayStopsAtTheLimitWithAWarningAndAValidMesh) {
