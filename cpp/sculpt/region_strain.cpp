@@ -71,7 +71,9 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
     const bool v_known = known(v);
     const Point& pv = p[v.idx];
     const Vec3& dv = displacement_[v.idx];
+    std::uint16_t edges = 0;  // the valence before this frame's iteration, from the same walk
     mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+      ++edges;
       const mesh::Index n = hc[h.idx].to.idx;
       if (n < v.idx || in_region_[n] != frame_) return;
       if (!v_known || seen_[n] != frame_) {
@@ -85,6 +87,7 @@ void RegionStrain::select(const mesh::SurfaceMesh& mesh, const std::vector<mesh:
       edge_strain2_[v.idx] = std::max(edge_strain2_[v.idx], s2);
       edge_strain2_[n] = std::max(edge_strain2_[n], s2);
     });
+    valence_[v.idx] = edges;
   }
   const float threshold2 = float(threshold * threshold);
   front_.clear();
@@ -121,10 +124,7 @@ void RegionStrain::grow_scope(const mesh::SurfaceMesh& mesh, const std::vector<m
   }
   scope.clear();
   for (mesh::Vertex v : region)
-    if (scope_stamp_[v.idx] == frame_) {
-      scope.push_back(v);
-      valence_[v.idx] = valence(hc, vh, v);
-    }
+    if (scope_stamp_[v.idx] == frame_) scope.push_back(v);
 }
 
 void RegionStrain::select_release(const mesh::SurfaceMesh& mesh, const std::vector<mesh::Vertex>& footprint,
@@ -147,7 +147,9 @@ void RegionStrain::select_release(const mesh::SurfaceMesh& mesh, const std::vect
   auto first_in_footprint = [&](mesh::Index v, mesh::Index other) { return other > v || in_region_[other] != frame_; };
   for (mesh::Vertex v : footprint) {
     if (unsettled_[v.idx] == frame_) activate(v);
+    std::uint16_t edges = 0;
     mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge h) {
+      ++edges;
       if (!hc[h.idx].face.is_valid()) return;
       const mesh::Index n = hc[h.idx].to.idx, m = hc[hc[h.idx].next.idx].to.idx;
       if (!first_in_footprint(v.idx, n) || !first_in_footprint(v.idx, m)) return;
@@ -157,6 +159,7 @@ void RegionStrain::select_release(const mesh::SurfaceMesh& mesh, const std::vect
         activate(mesh::Vertex(m));
       }
     });
+    valence_[v.idx] = edges;
   }
   grow_scope(mesh, footprint, scope);
 }

@@ -72,7 +72,7 @@ class RegionStrain {
   std::vector<float> edge_strain2_;         // this frame's largest squared edge strain (select)
   std::vector<std::uint8_t> next_to_new_;   // this frame: an edge to a vertex without a last position
   std::vector<std::uint32_t> unsettled_;    // the last iteration changed its connectivity
-  std::vector<std::uint16_t> valence_;      // before this frame's iteration (scope vertices)
+  std::vector<std::uint16_t> valence_;      // before this frame's iteration (region vertices)
   std::vector<mesh::Vertex> front_, next_front_;  // the rings' breadth-first search
 };
 
