@@ -2,6 +2,7 @@
 // Per-element attributes ("properties"): named, typed arrays that grow, shrink and compact
 // together with the elements they describe, so algorithms can attach data to a mesh without
 // the mesh knowing about them.
+#include <algorithm>
 #include <cassert>
 #include <cstdint>
 #include <memory>
@@ -47,10 +48,21 @@ class PropertyArray : public BasePropertyArray {
   void resize(size_t n) override { data_.resize(n, default_); }
   void reserve(size_t n) override { data_.reserve(n); }
   void push_back() override { data_.push_back(default_); }
+  // kept[i]: the old slot of new element i. In increasing order (a garbage collection) in place;
+  // in any other order (SurfaceMesh::sort_in_space) through a new array of the same capacity.
   void compact(const std::vector<Index>& kept) override {
-    for (size_t i = 0; i < kept.size(); ++i)
-      if (kept[i] != i) data_[i] = std::move(data_[kept[i]]);
-    data_.resize(kept.size());
+    bool increasing = true;
+    for (size_t i = 1; i < kept.size() && increasing; ++i) increasing = kept[i - 1] < kept[i];
+    if (increasing) {
+      for (size_t i = 0; i < kept.size(); ++i)
+        if (kept[i] != i) data_[i] = std::move(data_[kept[i]]);
+      data_.resize(kept.size());
+      return;
+    }
+    std::vector<T> moved;
+    moved.reserve(std::max(data_.capacity(), kept.size()));
+    for (Index k : kept) moved.push_back(std::move(data_[k]));
+    data_.swap(moved);
   }
   std::unique_ptr<BasePropertyArray> clone() const override {
     return std::make_unique<PropertyArray<T>>(*this);

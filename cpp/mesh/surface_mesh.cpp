@@ -1,8 +1,14 @@
 #include "mesh/surface_mesh.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <glm/common.hpp>
 
 namespace adasculpt::mesh {
 
@@ -404,29 +410,94 @@ void SurfaceMesh::reserve_room_for_edits() {
 
 void SurfaceMesh::garbage_collection() {
   if (!has_garbage()) return;
+  std::vector<Index> vkeep, ekeep, fkeep;
+  vkeep.reserve(n_vertices());
+  ekeep.reserve(n_edges());
+  fkeep.reserve(n_faces());
+  for (Index i = 0; i < vertices_size(); ++i)
+    if (!vdeleted_[Vertex(i)]) vkeep.push_back(i);
+  for (Index i = 0; i < edges_size(); ++i)
+    if (!edeleted_[Edge(i)]) ekeep.push_back(i);
+  for (Index i = 0; i < faces_size(); ++i)
+    if (!fdeleted_[Face(i)]) fkeep.push_back(i);
+  compact_to(vkeep, ekeep, fkeep);
+}
+
+namespace {
+// The bits of a 21-bit integer spread to every third bit (the Morton code's one axis).
+std::uint64_t spread_bits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+}  // namespace
+
+void SurfaceMesh::sort_in_space() {
+  // The live vertices by the Morton code of their position in the bounding box (ties, which only
+  // coincident points make, by slot: the order is deterministic).
+  Point lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (Vertex v : vertices()) {
+    lo = glm::min(lo, position(v));
+    hi = glm::max(hi, position(v));
+  }
+  std::vector<std::pair<std::uint64_t, Index>> keyed;
+  keyed.reserve(n_vertices());
+  for (Vertex v : vertices()) {
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double extent = hi[k] - lo[k];
+      const double t = extent > 0 ? (position(v)[k] - lo[k]) / extent : 0.0;
+      code |= spread_bits(static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0)) << k;
+    }
+    keyed.push_back({code, v.idx});
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<Index> vkeep(keyed.size()), rank(vertices_size(), kInvalidIndex);
+  for (size_t i = 0; i < keyed.size(); ++i) {
+    vkeep[i] = keyed[i].second;
+    rank[keyed[i].second] = static_cast<Index>(i);
+  }
+  // Edges and faces by the rank of their first vertex in that order (then by slot).
+  std::vector<std::pair<Index, Index>> by_rank;
+  by_rank.reserve(n_edges());
+  for (Edge e : edges())
+    by_rank.push_back({std::min(rank[to_vertex(halfedge(e, 0)).idx], rank[to_vertex(halfedge(e, 1)).idx]), e.idx});
+  std::sort(by_rank.begin(), by_rank.end());
+  std::vector<Index> ekeep;
+  ekeep.reserve(by_rank.size());
+  for (const auto& [r, e] : by_rank) ekeep.push_back(e);
+  by_rank.clear();
+  for (Face f : faces()) {
+    Vertex c[3];
+    face_vertices(f, c);
+    by_rank.push_back({std::min({rank[c[0].idx], rank[c[1].idx], rank[c[2].idx]}), f.idx});
+  }
+  std::sort(by_rank.begin(), by_rank.end());
+  std::vector<Index> fkeep;
+  fkeep.reserve(by_rank.size());
+  for (const auto& [r, f] : by_rank) fkeep.push_back(f);
+  compact_to(vkeep, ekeep, fkeep);
+}
+
+void SurfaceMesh::compact_to(const std::vector<Index>& vkeep, const std::vector<Index>& ekeep,
+                             const std::vector<Index>& fkeep) {
   const size_t nv = vertices_size(), ne = edges_size(), nf = faces_size();
   std::vector<Index> vmap(nv, kInvalidIndex), hmap(2 * ne, kInvalidIndex), fmap(nf, kInvalidIndex);
-  std::vector<Index> vkeep, ekeep, hkeep, fkeep;
-  vkeep.reserve(n_vertices());
-  for (Index i = 0; i < nv; ++i)
-    if (!vdeleted_[Vertex(i)]) {
-      vmap[i] = static_cast<Index>(vkeep.size());
-      vkeep.push_back(i);
-    }
-  for (Index i = 0; i < ne; ++i)
-    if (!edeleted_[Edge(i)]) {
-      Index ni = static_cast<Index>(ekeep.size());
-      hmap[2 * i] = 2 * ni;
-      hmap[2 * i + 1] = 2 * ni + 1;
-      ekeep.push_back(i);
-      hkeep.push_back(2 * i);
-      hkeep.push_back(2 * i + 1);
-    }
-  for (Index i = 0; i < nf; ++i)
-    if (!fdeleted_[Face(i)]) {
-      fmap[i] = static_cast<Index>(fkeep.size());
-      fkeep.push_back(i);
-    }
+  std::vector<Index> hkeep;
+  hkeep.reserve(2 * ekeep.size());
+  for (size_t i = 0; i < vkeep.size(); ++i) vmap[vkeep[i]] = static_cast<Index>(i);
+  for (size_t i = 0; i < ekeep.size(); ++i) {
+    const Index e = ekeep[i], ni = static_cast<Index>(i);
+    hmap[2 * e] = 2 * ni;
+    hmap[2 * e + 1] = 2 * ni + 1;
+    hkeep.push_back(2 * e);
+    hkeep.push_back(2 * e + 1);
+  }
+  for (size_t i = 0; i < fkeep.size(); ++i) fmap[fkeep[i]] = static_cast<Index>(i);
 
   auto remap_h = [&](Halfedge h) { return h.is_valid() ? Halfedge(hmap[h.idx]) : h; };
   for (Index i : vkeep) vconn_[Vertex(i)] = remap_h(vconn_[Vertex(i)]);

@@ -106,6 +106,13 @@ class SurfaceMesh {
   void delete_face_mark(Face f);
   // Compacts all arrays; every handle held outside the mesh becomes meaningless.
   void garbage_collection();
+  // Compacts all arrays as garbage_collection does, and puts the vertices in the order of a
+  // Z-order (Morton) curve through the bounding box, the edges and faces in the order of their
+  // first vertex in it: neighbours on the surface then lie near each other in memory. Splits
+  // append their elements at the end, so a remeshed surface's fans are scattered over the arrays,
+  // and every walk around a fan missed the cache at each step: a grab's frames on the held-out
+  // 100k scan took 10.1 ms (median) remeshed, 6.1 ms sorted. Handles become meaningless.
+  void sort_in_space();
 
   // ---- positions
   const Point& position(Vertex v) const { return points_[v]; }
@@ -348,6 +355,9 @@ class SurfaceMesh {
 
  private:
   void bind_builtin_properties();
+  // The live elements, new element i being old slot keep[i] (edges: both halfedges, in order);
+  // every connectivity reference is renumbered.
+  void compact_to(const std::vector<Index>& vkeep, const std::vector<Index>& ekeep, const std::vector<Index>& fkeep);
   void remove_loop_after_collapse(Halfedge keep, Halfedge remove);
   void fix_outgoing_halfedge(Vertex v);
 

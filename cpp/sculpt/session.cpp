@@ -619,7 +619,9 @@ void Session::remesh(int iterations, double detail) {
   o.projection = true;
   o.iterations = iterations;
   s.remesh_warning = remesh::remesh(s.mesh, o).warning;
-  if (s.mesh.has_garbage()) s.mesh.garbage_collection();
+  // Compacted in space order: the sculpting that follows walks fans, and a remeshed mesh's are
+  // scattered over its arrays (mesh/surface_mesh.h). A whole-mesh step: every slot changes anyway.
+  s.mesh.sort_in_space();
   s.history.commit_whole(s.mesh);
   s.journal.stop();  // a whole mesh is not an increment: the next save writes a full state
   s.last = FrameTimings{};
