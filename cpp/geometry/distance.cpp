@@ -40,6 +40,13 @@ OneWay one_way(const TriangleTree& source, const TriangleTree& target, size_t sa
   double sum2 = 0, running = 0;
   size_t taken = 0;
   TriangleTree::ClosestHit hint;
+  // The largest squared distance so far (squared until the end), where and to what.
+  auto note_farthest = [&](const Point& p) {
+    if (!(hint.distance2 > out.hausdorff)) return;
+    out.hausdorff = hint.distance2;
+    out.at = p;
+    out.closest = hint.point;
+  };
   for (const auto& t : tris) {
     const Point &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
     running += 0.5 * glm::length(glm::cross(b - a, c - a));
@@ -50,11 +57,7 @@ OneWay one_way(const TriangleTree& source, const TriangleTree& target, size_t sa
       const Point p = (1 - s) * a + (s * (1 - r)) * b + (s * r) * c;
       hint = target.closest_point(p, hint);
       sum2 += hint.distance2;
-      if (hint.distance2 > out.hausdorff) {
-        out.hausdorff = hint.distance2;
-        out.at = p;
-        out.closest = hint.point;
-      }
+      note_farthest(p);
     }
   }
   out.rms = taken > 0 ? std::sqrt(sum2 / taken) : 0.0;
@@ -64,11 +67,7 @@ OneWay one_way(const TriangleTree& source, const TriangleTree& target, size_t sa
   for (size_t i = 0; i < pts.size(); ++i) {
     if (!used[i]) continue;
     hint = target.closest_point(pts[i], hint);
-    if (hint.distance2 > out.hausdorff) {
-      out.hausdorff = hint.distance2;
-      out.at = pts[i];
-      out.closest = hint.point;
-    }
+    note_farthest(pts[i]);
   }
   out.hausdorff = std::sqrt(out.hausdorff);
   return out;

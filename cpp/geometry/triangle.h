@@ -11,6 +11,26 @@
 
 namespace adasculpt::geometry {
 
+// Squared sine of the smallest angle of a triangle (0 when degenerate). The smallest angle is
+// at most 60 degrees, where the sine grows with the angle, so this orders triangles by their
+// smallest angle without square roots or trigonometry: the remesher's inner loops call it per edge,
+// a grab's release per face of its footprint.
+inline double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
+  const Vec3 ab = b - a, bc = c - b, ca = a - c;
+  const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
+  const Vec3 n = glm::cross(ab, -ca);
+  const double twice_area_sq = glm::dot(n, n);
+  // The smallest angle is opposite the shortest edge, between the two others.
+  double others;
+  if (lab <= lbc && lab <= lca)
+    others = lbc * lca;
+  else if (lbc <= lca)
+    others = lab * lca;
+  else
+    others = lab * lbc;
+  return others > 0 ? twice_area_sq / others : 0.0;
+}
+
 // Unit normal of a face (right-hand rule on its halfedge order); the zero vector for a
 // triangle of zero area.
 Vec3 face_normal(const mesh::SurfaceMesh& mesh, mesh::Face f);

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/aabb_tree.h"
+#include "geometry/triangle.h"
 #include "mesh/flat_walk.h"
 #include "mesh/scratch.h"
 #include "mesh/vertex_mask.h"
@@ -52,24 +53,7 @@ using mesh::for_each_outgoing;  // mesh/flat_walk.h: the passes of a sculpting f
 // min angle just under 50 on face.off; 0.15 adds triangles for no further gain.
 constexpr double kGradation = 0.2;
 
-// Squared sine of the smallest angle of a triangle (0 when degenerate). The smallest angle is
-// at most 60 degrees, where the sine grows with the angle, so this orders triangles by their
-// smallest angle without square roots or trigonometry: the inner loops call it per edge.
-inline double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
-  const Vec3 n = glm::cross(ab, -ca);
-  const double twice_area_sq = glm::dot(n, n);
-  // The smallest angle is opposite the shortest edge, between the two others.
-  double others;
-  if (lab <= lbc && lab <= lca)
-    others = lbc * lca;
-  else if (lbc <= lca)
-    others = lab * lca;
-  else
-    others = lab * lbc;
-  return others > 0 ? twice_area_sq / others : 0.0;
-}
+using geometry::min_angle_sin2;  // geometry/triangle.h: the passes order triangles by it
 
 // One face's terms of the relaxation (equation 6), shared by its three corners.
 struct RelaxFace {

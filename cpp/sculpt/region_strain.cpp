@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/triangle.h"
 #include "mesh/flat_walk.h"
 
 namespace adasculpt::sculpt {
@@ -14,21 +15,6 @@ std::uint16_t valence(const mesh::SurfaceMesh::HalfedgeConnectivity* hc, const m
   std::uint16_t n = 0;
   mesh::for_each_outgoing(hc, vh, v, [&](mesh::Halfedge) { ++n; });
   return n;
-}
-
-// Squared sine of the triangle's smallest angle, the one opposite its shortest edge (0 when
-// degenerate).
-double min_angle_sin2(const Point& a, const Point& b, const Point& c) {
-  const Vec3 ab = b - a, bc = c - b, ca = a - c;
-  const double lab = glm::dot(ab, ab), lbc = glm::dot(bc, bc), lca = glm::dot(ca, ca);
-  const Vec3 n = glm::cross(ab, -ca);
-  const double n2 = glm::dot(n, n);
-  // |ab x ac|^2 = |ab|^2 |ac|^2 sin^2(A): the angle at a is opposite bc, and so on.
-  double sides;
-  if (lbc <= lab && lbc <= lca) sides = lab * lca;
-  else if (lca <= lab) sides = lab * lbc;
-  else sides = lbc * lca;
-  return sides > 0 ? n2 / sides : 0.0;
 }
 
 }  // namespace
@@ -153,7 +139,7 @@ void RegionStrain::select_release(const mesh::SurfaceMesh& mesh, const std::vect
       if (!hc[h.idx].face.is_valid()) return;
       const mesh::Index n = hc[h.idx].to.idx, m = hc[hc[h.idx].next.idx].to.idx;
       if (!first_in_footprint(v.idx, n) || !first_in_footprint(v.idx, m)) return;
-      if (min_angle_sin2(p[v.idx], p[n], p[m]) < poor_sin2) {
+      if (geometry::min_angle_sin2(p[v.idx], p[n], p[m]) < poor_sin2) {
         activate(v);
         activate(mesh::Vertex(n));
         activate(mesh::Vertex(m));

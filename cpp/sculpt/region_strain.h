@@ -42,8 +42,8 @@ class RegionStrain {
   // After the remeshing iteration: `region` (the deformer's list) loses the vertices the
   // iteration removed and gains those it added (they are in `scope`, which the remesher updated);
   // the vertices it added or whose valence it changed stay in the next scope; then every vertex of
-  // the region records its position for the next frame. (A release calls select with an infinite
-  // threshold: the scope is then those unsettled vertices and their rings, sculpt/grab.h.)
+  // the region records its position for the next frame. (A release calls select_release instead
+  // of select, and this with its footprint as the region.)
   void update_region(const mesh::SurfaceMesh& mesh, std::vector<mesh::Vertex>& region,
                      const std::vector<mesh::Vertex>& scope);
   // The release's scope (sculpt/grab.h), within `footprint` (every vertex the grab's regions held,
