@@ -30,12 +30,6 @@ std::string quote(std::string_view token);
 // (1 for OBJ).
 std::string polygon_problem(const uint32_t* idx, size_t n, uint32_t index_base = 0);
 
-// Fan triangulation (v0, vi, vi+1): exact for convex polygons, which is what
-// exporters write; anything fancier belongs in the remesher, not in the reader.
-inline void append_fan(std::vector<std::array<uint32_t, 3>>& tris, const uint32_t* idx, size_t n) {
-  for (size_t i = 1; i + 1 < n; ++i) tris.push_back({idx[0], idx[i], idx[i + 1]});
-}
-
 // Reads one number into `out`, throwing a located IoError for a missing,
 // malformed, out-of-range or (unless allow_nonfinite) non-finite value.
 // `multiline` lets the number sit on a later line (token-oriented formats).

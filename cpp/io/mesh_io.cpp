@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "io/io_common.h"
+#include "io/polygon_triangulation.h"
 
 namespace adasculpt::io {
 namespace {
@@ -92,13 +93,17 @@ PolygonSoup read_soup_from_memory(const std::uint8_t* data, size_t size, Format 
     size = 0;
   }
   const char* text = reinterpret_cast<const char*>(data);
+  PolygonSoup soup;
   switch (f) {
-    case Format::OFF: return detail::read_off(text, size, name_for_errors);
-    case Format::OBJ: return detail::read_obj(text, size, name_for_errors);
-    case Format::STL: return detail::read_stl(data, size, name_for_errors);
-    case Format::PLY: return detail::read_ply(data, size, name_for_errors);
+    case Format::OFF: soup = detail::read_off(text, size, name_for_errors); break;
+    case Format::OBJ: soup = detail::read_obj(text, size, name_for_errors); break;
+    case Format::STL: soup = detail::read_stl(data, size, name_for_errors); break;
+    case Format::PLY: soup = detail::read_ply(data, size, name_for_errors); break;
+    default: detail::fail(name_for_errors, "", "invalid Format value");
   }
-  detail::fail(name_for_errors, "", "invalid Format value");
+  // The readers cut polygons into fans; the non-convex ones are cut again inside their outlines.
+  detail::triangulate_concave_polygons(soup);
+  return soup;
 }
 
 PolygonSoup read_soup(const std::string& path) {

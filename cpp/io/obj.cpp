@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "io/io_common.h"
+#include "io/polygon_triangulation.h"
 
 namespace adasculpt::io::detail {
 namespace {
@@ -95,7 +96,7 @@ PolygonSoup read_obj(const char* data, size_t size, const std::string& name) {
       }
       std::string problem = polygon_problem(poly.data(), poly.size(), 1);
       if (!problem.empty()) fail(name, at_line(line), problem);
-      append_fan(soup.triangles, poly.data(), poly.size());
+      append_polygon(soup, poly.data(), poly.size());
     } else {
       std::string_view kw = c.token();
       if (!ignorable_keyword(kw)) {

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "io/io_common.h"
+#include "io/polygon_triangulation.h"
 
 namespace adasculpt::io::detail {
 namespace {
@@ -132,7 +133,7 @@ PolygonSoup read_off(const char* data, size_t size, const std::string& name) {
     }
     std::string problem = polygon_problem(poly.data(), poly.size());
     if (!problem.empty()) fail(name, at_line(line), problem);
-    append_fan(soup.triangles, poly.data(), poly.size());
+    append_polygon(soup, poly.data(), poly.size());
     c.next_line();
   }
   require_faces(soup, name);

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "io/io_common.h"
+#include "io/polygon_triangulation.h"
 
 namespace adasculpt::io::detail {
 namespace {
@@ -275,7 +276,7 @@ void read_binary(const uint8_t* d, size_t size, const Header& h, const Roles& r,
         }
         std::string problem = polygon_problem(poly.data(), poly.size());
         if (!problem.empty()) fail(name, at_offset(list_pos), problem);
-        append_fan(soup.triangles, poly.data(), poly.size());
+        append_polygon(soup, poly.data(), poly.size());
       }
     }
   }
@@ -334,7 +335,7 @@ void read_ascii(const char* data, size_t size, const Header& h, const Roles& r, 
         if (!keep) continue;
         std::string problem = polygon_problem(poly.data(), poly.size());
         if (!problem.empty()) fail(name, at_line(line), problem);
-        append_fan(soup.triangles, poly.data(), poly.size());
+        append_polygon(soup, poly.data(), poly.size());
       }
     }
   }

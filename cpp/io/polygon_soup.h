@@ -14,6 +14,14 @@ struct PolygonSoup {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<uint32_t, 3>> triangles;  // polygons already fan-triangulated
   std::vector<std::string> warnings;               // e.g. "welded 1234 coincident STL vertices"
+  // The readers' polygons of four or more corners, for io/polygon_triangulation.h: each its first
+  // triangle's index and its corners in polygon_corners from first_corner to the next one's (or the end).
+  struct Polygon {
+    uint32_t first_triangle;
+    uint32_t first_corner;
+  };
+  std::vector<Polygon> polygons;
+  std::vector<uint32_t> polygon_corners;
 };
 
 }  // namespace adasculpt::io
