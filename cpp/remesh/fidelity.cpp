@@ -29,6 +29,10 @@ namespace adasculpt::remesh {
 
 namespace {
 constexpr double kPlacedMinSin2 = 0.0109;  // sin^2 of 6 degrees: a split on the reference makes no sliver
+// segment_strays: over a crease the limits shrink by (2 / 1.7) cos(theta / 2), down to half of them
+// (squared here).
+constexpr double kCreaseMargin2 = (2.0 / 1.7) * (2.0 / 1.7);
+constexpr double kCreaseLimitScale2 = 0.25;
 }  // namespace
 
 void Remesher::Impl::build_reference_normals() {
@@ -59,8 +63,8 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
   // edge, so neither may a collapse or flip be refused for creating it.
   const double floor = 2 * opt.min_length;
   if (l2 < floor * floor) return false;
-  const double quarter2 = kFidelityQuarter * kFidelityQuarter * tolerance * tolerance;
-  const double middle2 = kFidelityMidpoint * kFidelityMidpoint * tolerance * tolerance;
+  double quarter2 = kFidelityQuarter * kFidelityQuarter * tolerance * tolerance;
+  double middle2 = kFidelityMidpoint * kFidelityMidpoint * tolerance * tolerance;
   // Two estimates of the largest distance, against the smaller limit; without normals (a hint
   // lost), measure. (l / 2)^2 sin^2(theta / 2) = l^2 (1 - cos theta) / 8. And the planes of the
   // two reference triangles: ha, hb the heights of each end over the other's plane; along the
@@ -74,6 +78,17 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
     const Vec3& na = ref_normal[hint_a];
     const Vec3& nb = ref_normal[hint_b];
     const double one_minus_cos = 1.0 - glm::dot(na, nb);
+    // The limits hold the chord near the surface; the Hausdorff distance also asks the surface to
+    // stay near the chord. Over a crease that turns by theta, the crease line lies 1 / cos(theta / 2)
+    // times farther from the chord than the chord's farthest point from the two sides: sqrt 2 at a
+    // right angle, 1.73 at a tetrahedron's edge (at eps 1 %, features off: edges within 1.24 eps of
+    // the faces, the crease 2.29 eps from the surface). The limits keep the chord within 1.7
+    // tolerances, and the target is 2: they shrink by 2 / 1.7 cos(theta / 2) where that is below 1,
+    // down to half of them (a fold's turn near 180 degrees would ask for no length at all).
+    // cos^2(theta / 2) = (1 + cos theta) / 2.
+    const double scale2 = std::clamp(kCreaseMargin2 * (1.0 - 0.5 * one_minus_cos), kCreaseLimitScale2, 1.0);
+    quarter2 *= scale2;
+    middle2 *= scale2;
     if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
     const auto& pts = tree.points();
     const auto& tris = tree.triangles();

@@ -75,6 +75,16 @@ TEST(RemeshFidelity, IcosahedronStaysWithinTwiceEpsilon) {
   expect_within_twice_epsilon(mesh::make_icosphere(0), {0.0001});
 }
 
+// The corner of the unit cube cut off as a tetrahedron: edges turning by 90 and 125 degrees. The
+// distance runs both ways: the limits kept every edge within 1.24 epsilon of the faces at epsilon
+// 1 %, but the edges cut the tetrahedron's own edges 2.29 epsilon deep (a crease lies farther from
+// a chord than the chord from the two faces). Now the limits shrink over a crease: 1.58 epsilon.
+TEST(RemeshFidelity, TetrahedronEdgesStayWithinTwiceEpsilonOfTheRemeshedSurface) {
+  const SurfaceMesh tetrahedron = mesh::build_from_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                                                             {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}});
+  expect_within_twice_epsilon(tetrahedron, {0.01, 0.005});
+}
+
 // The fidelity splits grow with a finer tolerance, never with a coarser one. Within the sweep's
 // slack (scripts/sweep_remesh.py: 1 % + 5 vertices): where the max length decides, as on most of
 // the pyramid, the count moves by a few vertices either way.
