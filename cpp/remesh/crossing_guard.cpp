@@ -15,6 +15,9 @@
 namespace adasculpt::remesh {
 
 namespace {
+// first_crossing refuses a candidate whose smallest angle has a sine under 1e-9 (squared here):
+// collinear up to rounding, its normal is noise.
+constexpr double kMinCandidateSin2 = 1e-18;
 // Cells as long as this many mean edges: a face's box covers one or two cells along each axis,
 // an operation's new triangles a few. One size serves the operations' queries and
 // undo_crossing_moves' sweep over all pairs in a cell (whose cost grows with the faces per cell),
@@ -198,9 +201,6 @@ void CrossingGuard::flipped(const SurfaceMesh& mesh, Edge e) {
   grid_.insert(mesh, mesh.face(mesh.halfedge(e, 0)));
   grid_.insert(mesh, mesh.face(mesh.halfedge(e, 1)));
 }
-
-// first_crossing refuses a candidate whose smallest angle has a sine under 1e-9 (squared here).
-constexpr double kMinCandidateSin2 = 1e-18;
 
 // The faces near the candidates are gathered once for all of them (an operation's new
 // triangles are neighbours: their boxes overlap), then each is read once from the mesh.
