@@ -295,6 +295,8 @@ void Remesher::Impl::build_reference() {
 
   ref_sizing.assign(sizing.vector().begin(), sizing.vector().end());
   estimate_vertex_budget();
+  crease_samples.clear();
+  crease_samples_due = true;
   build_reference_normals();
   ref_near_neck.assign(tree.points().size(), 0);
   necks.clear();

@@ -296,6 +296,22 @@ struct Remesher::Impl : RemeshScratch {
   };
   std::vector<Uncovered> uncovered;
   std::vector<std::uint8_t> point_covered;  // per tree point, this call
+  // Points along the reference's creases, covered like its points (coverage.cpp): a crease cut
+  // off between two reference points is invisible to a check of the points alone. Ids from
+  // tree.points().size() on name them (anchor, pins); the cover_* accessors take either kind.
+  struct CreaseSample {
+    Point p;
+    std::uint32_t triangle;  // a reference triangle at the crease (a vertex's projection hint)
+    double sizing;           // the reference sizing there
+  };
+  std::vector<CreaseSample> crease_samples;
+  bool crease_samples_due = true;  // set by build_reference: sampled at the next coverage check
+  void sample_reference_creases();
+  bool is_reference_segment(std::uint32_t a, std::uint32_t b) const;  // a feature or boundary edge of the reference
+  const Point& cover_point(std::uint32_t id) const;
+  std::uint32_t cover_triangle(std::uint32_t id) const;
+  double cover_sizing(std::uint32_t id) const;
+  bool anchored_near(const Point& p, double radius);
   std::vector<Point> pinned_now;  // this call's pins: one per worn tip, not one per point of it
   // Where the sizing is right a reference point may lie farther from the surface than an edge's
   // midpoint does: at the centre of a triangle at the split threshold (4/3 L) of a sphere sized

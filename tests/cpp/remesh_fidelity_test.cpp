@@ -85,6 +85,42 @@ TEST(RemeshFidelity, TetrahedronEdgesStayWithinTwiceEpsilonOfTheRemeshedSurface)
   expect_within_twice_epsilon(tetrahedron, {0.01, 0.005});
 }
 
+// A unit box with one vertical edge cut off by a narrow chamfer (c wide): two creases of 45
+// degrees, a strip of two long triangles between them. The vertex curvature spreads the creases'
+// turn over large fans, so the sizing asks for edges many times the chamfer's width; the edges
+// across the strip keep their midpoints near the faces, and the strip was cut off: 1.75 % of the
+// diagonal at epsilon 0.05 % (c = 0.01), 0.59 % at 0.01 % (c = 0.03). Coverage now samples the
+// creases (coverage.cpp): 0.09 % and 0.018 %.
+SurfaceMesh chamfered_box(double c) {
+  const std::vector<std::array<double, 2>> outline = {{0, 0}, {1, 0}, {1, 1 - c}, {1 - c, 1}, {0, 1}};
+  std::vector<std::array<double, 3>> points;
+  for (const double z : {0.0, 1.0})
+    for (const auto& p : outline) points.push_back({p[0], p[1], z});
+  const std::uint32_t n = static_cast<std::uint32_t>(outline.size());
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    triangles.push_back({i, j, n + j});
+    triangles.push_back({i, n + j, n + i});
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) {  // the caps, fans from the first corner
+    triangles.push_back({0, i + 1, i});
+    triangles.push_back({n, n + i, n + i + 1});
+  }
+  return mesh::build_from_triangles(points, triangles);
+}
+
+TEST(RemeshFidelity, NarrowChamferStaysWithinTwiceEpsilon) {
+  {
+    SCOPED_TRACE("chamfer 0.01");
+    expect_within_twice_epsilon(chamfered_box(0.01), {0.0005});
+  }
+  {
+    SCOPED_TRACE("chamfer 0.03");
+    expect_within_twice_epsilon(chamfered_box(0.03), {0.0001});
+  }
+}
+
 // The fidelity splits grow with a finer tolerance, never with a coarser one. Within the sweep's
 // slack (scripts/sweep_remesh.py: 1 % + 5 vertices): where the max length decides, as on most of
 // the pyramid, the count moves by a few vertices either way.
