@@ -312,6 +312,12 @@ struct Remesher::Impl : RemeshScratch {
   std::uint32_t cover_triangle(std::uint32_t id) const;
   double cover_sizing(std::uint32_t id) const;
   bool anchored_near(const Point& p, double radius);
+  // Whether an edge from p (on the reference, in triangle `hint`) to an end of e or a corner
+  // opposite it strays (fidelity.cpp): a split of e at p off it.
+  bool split_strays(Edge e, const Point& p, std::uint32_t hint) const;
+  // Whether the centre of a face at w lies farther from the reference than an edge's midpoint may:
+  // a fan whose edges all lie on the reference can still tent across an inner corner.
+  bool fan_faces_stray(Vertex w) const;
   std::vector<Point> pinned_now;  // this call's pins: one per worn tip, not one per point of it
   // Where the sizing is right a reference point may lie farther from the surface than an edge's
   // midpoint does: at the centre of a triangle at the split threshold (4/3 L) of a sphere sized
