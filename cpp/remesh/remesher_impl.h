@@ -249,7 +249,7 @@ struct Remesher::Impl : RemeshScratch {
   bool strays_at(const Point& p, std::uint32_t hint) const;
   size_t undo_straying_moves();  // after the guarded projection; see fidelity.cpp
   std::vector<Point> fidelity_old;             // its scratch, per vertex slot
-  std::vector<std::uint8_t> fidelity_moved;    // 0 unmoved, 1 moved, 2 sent back
+  std::vector<std::uint8_t> fidelity_moved;    // 0 unmoved, 1 moved, 2 sent back, 3 kept (off its old place)
   std::vector<Vertex> fidelity_queue;
   bool fan_strays(Vertex v) const;  // an edge at v strays
   bool fan_strayed_at(Vertex v, const Point& p, std::uint32_t hint) const;  // the same with v at p
