@@ -62,8 +62,6 @@ constexpr double kCreasePinSpacing = 0.5;
 // Crease samples lie this many coverage limits apart, or this many sizings where that is more.
 constexpr double kSampleSpacingLimits = 1.0;
 constexpr double kSampleSpacingSizings = 0.25;
-// The longest edge the split pass leaves, in sizings (split_collapse.cpp).
-constexpr double kLongestEdge = 4.0 / 3.0;
 }  // namespace
 
 // Whether a vertex anchored to a point lies within `radius` of p (a box query in the guard's grid).
@@ -98,13 +96,6 @@ double Remesher::Impl::cover_sizing(std::uint32_t id) const {
   return id < n ? ref_sizing[id] : crease_samples[id - n].sizing;
 }
 
-// A crease of the reference whose faces turn by theta can be cut off by a chord across it by up
-// to (its reach) x sin(theta / 2), where the reach is as far as a chord's ends may lie from it:
-// the width of its faces, or the length of an edge there. The creases whose cut may pass the
-// coverage limit are sampled every quarter of the smaller sizing at their ends (one limit at
-// least). Feature lines are left out: their vertices are projected onto them. The sizing field does not see them where the input is coarse: the curvature measured
-// at a vertex spreads a crease's turn over the vertex's fan (cgal/hand at epsilon 0.05 %, features
-// off: a 98-degree crease 0.16 % of the diagonal from the output, midway between its ends).
 bool Remesher::Impl::is_reference_segment(std::uint32_t a, std::uint32_t b) const {
   for (std::uint32_t k = ref_segment_offset[a]; k < ref_segment_offset[a + 1]; ++k) {
     const auto& s = ref_segments[ref_segment_of_point[k]];
@@ -113,6 +104,14 @@ bool Remesher::Impl::is_reference_segment(std::uint32_t a, std::uint32_t b) cons
   return false;
 }
 
+// A crease of the reference whose faces turn by theta can be cut off by a chord across it by up
+// to (its reach) x sin(theta / 2), where the reach is as far as a chord's ends may lie from it:
+// the width of its faces, or the length of an edge there. The sizing field does not see such a
+// crease where the input is coarse: the curvature measured at a vertex spreads the crease's turn
+// over the vertex's fan (cgal/hand at epsilon 0.05 %, features off: a 98-degree crease 0.16 % of
+// the diagonal from the output, midway between its ends). The creases whose cut may pass the
+// coverage limit are sampled every quarter of the smaller sizing at their ends (one limit at
+// least). Feature lines are left out: their vertices are projected onto them.
 void Remesher::Impl::sample_reference_creases() {
   crease_samples.clear();
   crease_samples_due = false;
@@ -141,7 +140,7 @@ void Remesher::Impl::sample_reference_creases() {
       // |n| is twice the face's area: over the edge's length, its height.
       const double width = std::min(l0, l1) / length;
       const double sin_half = std::sqrt(std::max(0.0, 0.5 * (1 - glm::dot(n0, n1) / (l0 * l1))));
-      const double reach = std::min(width, kLongestEdge * std::max(ref_sizing[a], ref_sizing[b]));
+      const double reach = std::min(width, kSplitFactor * std::max(ref_sizing[a], ref_sizing[b]));
       if (!(reach * sin_half > limit)) continue;
       const double spacing =
           std::max(kSampleSpacingLimits * limit, kSampleSpacingSizings * std::min(ref_sizing[a], ref_sizing[b]));

@@ -313,7 +313,7 @@ struct Remesher::Impl : RemeshScratch {
   double cover_sizing(std::uint32_t id) const;
   bool anchored_near(const Point& p, double radius);
   // Whether an edge from p (on the reference, in triangle `hint`) to an end of e or a corner
-  // opposite it strays (fidelity.cpp): a split of e at p off it.
+  // opposite it would stray (segment_strays): a split of e at p, off the edge, before it is made.
   bool split_strays(Edge e, const Point& p, std::uint32_t hint) const;
   // Whether the centre of a face at w lies farther from the reference than an edge's midpoint may:
   // a fan whose edges all lie on the reference can still tent across an inner corner.
@@ -324,6 +324,9 @@ struct Remesher::Impl : RemeshScratch {
   // by the paper's formula, 16/9 epsilon. Below that the check would fire on smooth surfaces
   // (an icosphere at 1.4 tolerances: edges 12 % short of the formula's).
   static constexpr double kCoverageLimit = 1.8;
+  // The split pass splits edges longer than this many sizings (Botsch & Kobbelt): the longest edge
+  // it leaves, which the crease samples also use as the reach of a chord across a crease.
+  static constexpr double kSplitFactor = 4.0 / 3.0;
   double coverage_limit() const { return kCoverageLimit * fidelity_tolerance(); }
 
   // ---- passes (split_collapse.cpp, flip_relax.cpp)

@@ -13,7 +13,6 @@
 namespace adasculpt::remesh {
 
 namespace {
-constexpr double kSplitFactor = 4.0 / 3.0;
 constexpr double kCollapseFactor = 4.0 / 5.0;
 constexpr int kMaxSplitPasses = 10;
 constexpr int kRegionSplitPasses = 2;
