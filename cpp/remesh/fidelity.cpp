@@ -128,8 +128,9 @@ bool Remesher::Impl::edge_strays(Edge e, double tolerance) const {
 
 // The new edges of a collapse: from the target to every neighbour of the moving end(s) but the
 // other end. The target carries the hint of the end that stays (either end's for a midpoint).
-bool Remesher::Impl::collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move) const {
-  const double tolerance = fidelity_tolerance();
+bool Remesher::Impl::collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move,
+                                             double tolerance_times) const {
+  const double tolerance = tolerance_times * fidelity_tolerance();
   if (!(tolerance > 0)) return true;
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   const Halfedge o = mesh.opposite(h);
