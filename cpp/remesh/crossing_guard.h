@@ -205,10 +205,12 @@ class CrossingGuard {
   bool contain_inherited_ = false;  // contain_inherited_crossings
   void reset_budget();              // start() and resume(): renewals, spent_, contain_inherited_
   bool renew_budget(const SurfaceMesh& mesh);  // build_grid, or (none left) spent_
-  std::vector<Vertex> to_check_, to_undo_;
+  std::vector<Vertex> to_check_, to_undo_, crossed_fans_;
   // undo_crossing_moves' rounds: the vertices in to_undo_ go back, then the corners of the pairs
   // their fans now make, until none is left (or, with stop_when_spent, until the budget is
-  // spent: a spent grid finds a crossing everywhere). Returns the vertices sent back.
+  // spent: a spent grid finds a crossing everywhere). A fan that crossed is checked again in the
+  // next round (crossed_fans_): a round resolves its first crossing only. Returns the vertices
+  // sent back.
   size_t send_back(SurfaceMesh& mesh, const PlacesBefore& before, bool stop_when_spent = false);
   void list_moved_corners(const SurfaceMesh& mesh, const PlacesBefore& before,
                           const std::array<std::uint32_t, 3>& c);  // into to_undo_

@@ -123,6 +123,31 @@ TEST(CrossingGuard, SendsBackOnlyTheMovesThatCross) {
   EXPECT_FALSE(guard.fan_crosses(m, Vertex(0)));
 }
 
+// A fan sent back may land on two moved triangles of different vertices: both must go back, not
+// only the one of the first crossing found. A flat hexagonal fan around vertex 0, its centre
+// lifted into a small flat obstacle above it (so the sweep sends it back); two separate
+// triangles above the fan, near ring vertices 1 and 4, each with one corner lowered through the
+// fan's old place but clear of the lifted cone. Before the fix the second stayed crossed.
+TEST(CrossingGuard, ChecksAFanSentBackUntilNoneOfItsCrossingsIsLeft) {
+  const Points p = {{0, 0, 0},
+                    {1, 0, 0}, {0.5, 0.866, 0}, {-0.5, 0.866, 0}, {-1, 0, 0}, {-0.5, -0.866, 0}, {0.5, -0.866, 0},
+                    {0.85, 0, 0.1}, {0.75, -0.1, 0.02}, {0.75, 0.1, 0.02},        // near ring vertex 1
+                    {-0.85, 0, 0.1}, {-0.75, 0.1, 0.02}, {-0.75, -0.1, 0.02},     // near ring vertex 4
+                    {-0.3, -0.3, 0.3}, {0.4, 0, 0.3}, {-0.3, 0.3, 0.3}};          // the obstacle
+  const Triangles t = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 6}, {0, 6, 1},
+                       {7, 9, 8}, {10, 12, 11}, {13, 14, 15}};
+  SurfaceMesh m = mesh::build_from_triangles(p, t);
+  ASSERT_EQ(crossings(m), 0u);
+  const std::vector<Point> before = m.positions();
+  m.position(Vertex(0)).z = 0.5;    // through the obstacle, clear of the two triangles
+  m.position(Vertex(7)).z = -0.1;   // through the fan's old place, under its new cone
+  m.position(Vertex(10)).z = -0.1;
+  ASSERT_GT(crossings(m), 0u);
+  remesh::CrossingGuard guard;
+  EXPECT_EQ(guard.undo_crossing_moves(m, before), 3u);
+  EXPECT_EQ(crossings(m), 0u);
+}
+
 TEST(CrossingGuard, TestsNothingWhenStopped) {
   SurfaceMesh m = roof(true);
   remesh::CrossingGuard guard;
