@@ -150,8 +150,8 @@ bool Remesher::Impl::collapse_keeps_fidelity(Halfedge h, const Point& target, bo
   return fan_ok(v0, v1) && (!both_ends_move || fan_ok(v1, v0));
 }
 
-bool Remesher::Impl::flip_keeps_fidelity(Vertex c, Vertex d) const {
-  const double tolerance = fidelity_tolerance();
+bool Remesher::Impl::flip_keeps_fidelity(Vertex c, Vertex d, double tolerance_times) const {
+  const double tolerance = tolerance_times * fidelity_tolerance();
   return !(tolerance > 0) ||
          !segment_strays(mesh.position(c), ref_hint[c], mesh.position(d), ref_hint[d], tolerance);
 }

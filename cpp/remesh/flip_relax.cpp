@@ -309,13 +309,16 @@ void Remesher::Impl::relax_vertices() {
 // input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
 // when it is short, otherwise flip their longest edge (a "cap" has no short edge).
 //
-// The collapse may take the surface a few tolerances from the reference, not farther (the regular
-// passes keep one; held to one here, the sliver stays more often: gen/thin_plate at epsilon
-// 0.05 % got 4 % more vertices and a worse rim). Without a bound, the repair joined far sides of
-// gen/sliver_cylinder with chords through its inside: the vertex budget cuts the first split pass
-// of its needle strips short, and the repair's collapses then took 7.8k vertices down to 740, the
-// chords' midpoints 0.05 inside, out of the projection's reach in the later iterations (Hausdorff
-// 13 x the tolerance at epsilon 0.05 %; now 0.78 x).
+// The collapse and the flip may take the surface a few tolerances from the reference, not farther
+// (the regular passes keep one; held to one here, the sliver stays more often: gen/thin_plate at
+// epsilon 0.05 % got 4 % more vertices and a worse rim). Without a bound:
+// - the collapses joined far sides of gen/sliver_cylinder with chords through its inside: the
+//   vertex budget cuts the first split pass of its needle strips short, and the repair then took
+//   7.8k vertices down to 740, the chords' midpoints 0.05 inside, out of the projection's reach in
+//   the later iterations (Hausdorff 13 x the tolerance at epsilon 0.05 %; now 0.78 x);
+// - the flips made edges 20 tolerances off across cgal/3torus's 16-degree creases (epsilon 0.01 %,
+//   features 45); the next split pass put vertices at their midpoints, and the crossing guard
+//   sent the projected ones back there (Hausdorff 0.22 % of the diagonal; now 0.008 %).
 size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
   const double sin_limit = portable::sin(angle_deg * M_PI / 180.0);
   const double sin2_limit = sin_limit * sin_limit;
@@ -376,7 +379,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
           const Point& target = mesh.position(mesh.to_vertex(h));
           if (collapse_geometry_ok(h, target, false, false, 0.5) && collapse_topology_ok(h) &&
               !collapse_crosses(h, target, false) &&
-              collapse_keeps_fidelity(h, target, false, kSliverCollapseToleranceTimes) &&
+              collapse_keeps_fidelity(h, target, false, kSliverRepairToleranceTimes) &&
               collapse_with_mirror(h, false) != 0)
             return true;
         }
@@ -387,6 +390,9 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         if (is_feature(e) || mesh.is_boundary(e) || !in_scope(e) || !flip_spares_masked(e) || !mesh.is_flip_ok(e) ||
             !flip_geometry_ok(e, false))
           return false;
+        const Halfedge side = mesh.halfedge(e, 0);
+        const Vertex c = mesh.to_vertex(mesh.next(side)), d = mesh.to_vertex(mesh.next(mesh.opposite(side)));
+        if (!flip_keeps_fidelity(c, d, kSliverRepairToleranceTimes)) return false;
         const Edge image = flip_partner(e);
         if (!image.is_valid() || (image != e && !mesh.is_flip_ok(image))) return false;
         mesh.flip(e);

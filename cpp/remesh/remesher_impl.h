@@ -119,9 +119,9 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<std::array<std::uint32_t, 2>> ref_segments;
   std::vector<std::uint32_t> ref_segment_offset, ref_segment_of_point;
   bool has_reference = false;
-  // How far from the reference, in fidelity tolerances, the sliver repair's collapses may take the
-  // surface (fix_bad_faces).
-  static constexpr double kSliverCollapseToleranceTimes = 4.0;
+  // How far from the reference, in fidelity tolerances, the sliver repair's collapses and flips may
+  // take the surface (fix_bad_faces).
+  static constexpr double kSliverRepairToleranceTimes = 4.0;
   // ---- the vertex budget (budget.cpp)
   RemeshReport report;
   // The budget is kBudgetPerEstimate x the estimate, but at most kLargeBudgetPerEstimate x the
@@ -263,7 +263,7 @@ struct Remesher::Impl : RemeshScratch {
   Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
   // (tolerance_times: of fidelity_tolerance(); the sliver repair allows more)
   bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move, double tolerance_times = 1.0) const;
-  bool flip_keeps_fidelity(Vertex c, Vertex d) const;  // the new edge c-d of a flip
+  bool flip_keeps_fidelity(Vertex c, Vertex d, double tolerance_times = 1.0) const;  // the new edge c-d of a flip
 
   // ---- the other side of the fidelity check (coverage.cpp): reference points the surface left
   // more than kCoverageLimit x the tolerance behind (a tip worn away iteration by iteration)
