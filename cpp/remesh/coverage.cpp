@@ -57,11 +57,8 @@ constexpr size_t kSamplesPerPoint = 4;
 constexpr size_t kMinSamples = 100000;
 // A crease sample is pinned only where no anchored vertex lies within this many sizings of it:
 // anchored vertices are never collapsed, and pins along a crease closer than the sizing left
-// slivers between them. Half a sizing left the creases next to a pinned corner uncovered that
-// far (cgal/blob-closed at epsilon 0.05 %: a 31-degree crease cut 3.8 tolerances deep a tenth
-// of the way along it, Hausdorff 2.3 x 2 epsilon; at a quarter, 0.9 x. Of the 82 sweep runs
-// that ended within 1.25 x of the target, 69 over it -> 65).
-constexpr double kCreasePinSpacing = 0.25;
+// slivers between them.
+constexpr double kCreasePinSpacing = 0.5;
 // Crease samples lie this many coverage limits apart, or this many sizings where that is more.
 constexpr double kSampleSpacingLimits = 1.0;
 constexpr double kSampleSpacingSizings = 0.25;
