@@ -530,11 +530,8 @@ def main():
     skipped = [(m.name, infos[m.name]["skip"]) for m in meshes if "skip" in infos[m.name]]
     usable = [m for m in meshes if "skip" not in infos[m.name]]
     if args.sample:
-        all_by_name = {s.name: s for s in settings}
-        runs = [(m, all_by_name[name]) for m in usable for name in SAMPLE_SETTINGS
-                if m.name in SAMPLE_MESHES and name in all_by_name]
-        runs += [(m, all_by_name[name]) for m in usable for mesh, name in SAMPLE_RUNS
-                 if m.name == mesh and name in all_by_name and (m.name not in SAMPLE_MESHES or name not in SAMPLE_SETTINGS)]
+        wanted = {(mesh, name) for mesh in SAMPLE_MESHES for name in SAMPLE_SETTINGS} | set(SAMPLE_RUNS)
+        runs = [(m, s) for m in usable for s in settings if (m.name, s.name) in wanted]
     else:
         runs = [(m, s) for m in usable for s in settings]
     planned = len(runs)

@@ -387,9 +387,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       };
       auto flip_longest = [&]() {
         const Edge e = mesh.edge(hs[longest]);
-        if (is_feature(e) || mesh.is_boundary(e) || !in_scope(e) || !flip_spares_masked(e) || !mesh.is_flip_ok(e) ||
-            !flip_geometry_ok(e, false))
-          return false;
+        if (!repair_flip_ok(e) || !flip_geometry_ok(e, false)) return false;
         const Halfedge side = mesh.halfedge(e, 0);
         const Vertex c = mesh.to_vertex(mesh.next(side)), d = mesh.to_vertex(mesh.next(mesh.opposite(side)));
         if (!flip_keeps_fidelity(c, d, kSliverRepairToleranceTimes)) return false;
