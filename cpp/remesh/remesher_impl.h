@@ -60,6 +60,7 @@ struct RelaxFace {
   Vec3 normal;            // twice the area, along the normal
   Point weighted_centre;  // weight x barycentre
   double weight;          // area x mean sizing of the corners
+  double area2;           // twice the area
 };
 
 // The per-frame passes' scratch buffers. They outlive the remesher (reference.cpp: the last
