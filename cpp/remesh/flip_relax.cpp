@@ -122,7 +122,7 @@ size_t Remesher::Impl::flip_edges() {
     // 4 + 2 (xc + xd - xa - xb), exactly, in integers.
     if (excess[a] + excess[b] - excess[c] - excess[d] <= 2) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
-    if (!flip_keeps_fidelity(Vertex(c), Vertex(d))) continue;  // no edge off the reference (fidelity.cpp)
+    if (!flip_keeps_fidelity(e)) continue;  // no edge off the reference (fidelity.cpp)
     const Edge image = flip_partner(e);
     if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);
@@ -194,7 +194,7 @@ size_t Remesher::Impl::flip_for_angles(double poor_angle) {
     double q1 = min_angle_sin2(a, d, c), q2 = min_angle_sin2(d, b, c);
     if (std::min(q1, q2) <= before) continue;
     if (!flip_topology_ok(e) || !flip_geometry_ok(e, true)) continue;
-    if (!flip_keeps_fidelity(Vertex(vc), Vertex(vd))) continue;  // (fidelity.cpp)
+    if (!flip_keeps_fidelity(e)) continue;  // (fidelity.cpp)
     const Edge image = flip_partner(e);
     if (!image.is_valid() || (image != e && !flip_topology_ok(image))) continue;
     flip_counting(e);
@@ -410,9 +410,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       auto flip_longest = [&]() {
         const Edge e = mesh.edge(hs[longest]);
         if (!repair_flip_ok(e) || !flip_geometry_ok(e, false)) return false;
-        const Halfedge side = mesh.halfedge(e, 0);
-        const Vertex c = mesh.to_vertex(mesh.next(side)), d = mesh.to_vertex(mesh.next(mesh.opposite(side)));
-        if (!flip_keeps_fidelity(c, d, kSliverRepairToleranceTimes)) return false;
+        if (!flip_keeps_fidelity(e, kSliverRepairToleranceTimes)) return false;
         const Edge image = flip_partner(e);
         if (!image.is_valid() || (image != e && !mesh.is_flip_ok(image))) return false;
         mesh.flip(e);

@@ -157,14 +157,18 @@ TEST(RemeshSafety, RelaxationKeepsThinPlateCorners) {
   EXPECT_EQ(geometry::self_intersections(m, 1000).pairs.size(), 0u);
 }
 
-// At coarse epsilon the plate is thinner than a tenth of the tolerance, and its rim vertices'
-// fans are two sheets facing opposite ways: relaxation moved them along the noise of that fan's
-// normal, into the plate, and the projection put them on a sheet there; each iteration ate
-// further into the rim (epsilon 2 %: 2.8 % of the diagonal deep after one iteration, 7.6 % after
-// five; 22 % of the area gone). Such a vertex now stays where it is (flip_relax.cpp).
-TEST(RemeshSafety, CoarseEpsilonKeepsTheThinPlatesRim) {
+// The plate is thinner than the tolerance from epsilon 0.2 % on, and every pass met its rim as a
+// fold of two sheets facing opposite ways:
+// - relaxation moved a rim vertex along the noise of its fan's normal, into the plate, and the
+//   projection put it on a sheet there; each iteration ate further into the rim (epsilon 2 %:
+//   2.8 % of the diagonal deep after one iteration, 7.6 % after five, 22 % of the area gone).
+//   Such a vertex now stays where it is (flip_relax.cpp);
+// - the valence flips replaced rim edges by edges from sheet to sheet, inside the plate and near
+//   both, which the fidelity check passed (epsilon 0.2 %: notches 1.43 % of the diagonal deep).
+//   A flip's old edge must now stay near its new triangles (fidelity.cpp).
+TEST(RemeshSafety, AThinPlatesRimStaysWithinTwoEpsilon) {
   const SurfaceMesh input = thin_plate(0.002);
-  for (const double epsilon : {0.02, 0.05}) {
+  for (const double epsilon : {0.002, 0.02, 0.05}) {
     SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
     SurfaceMesh m = input;
     remesh_case(m, PlateCase{true, epsilon});
