@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "mesh/orient_faces.h"
+
 namespace adasculpt::mesh {
 
 namespace {
@@ -12,6 +14,18 @@ struct DirectedEdge {
   std::uint32_t corner;  // 3 * face + i: the halfedge from corner i to corner i+1
   bool forward;          // from lo to hi
 };
+
+// Two faces (and only two) on one edge, both running it from lo to hi or both from hi to lo.
+bool has_neighbours_running_alike(const std::vector<DirectedEdge>& sorted) {
+  for (size_t k = 0; k + 1 < sorted.size(); ++k) {
+    const DirectedEdge &x = sorted[k], &y = sorted[k + 1];
+    const bool two = x.lo == y.lo && x.hi == y.hi &&
+                     (k + 2 >= sorted.size() || sorted[k + 2].lo != x.lo || sorted[k + 2].hi != x.hi) &&
+                     (k == 0 || sorted[k - 1].lo != x.lo || sorted[k - 1].hi != x.hi);
+    if (two && x.forward == y.forward) return true;
+  }
+  return false;
+}
 
 std::string vertex_pair(std::uint32_t a, std::uint32_t b) {
   return "vertices " + std::to_string(a) + " and " + std::to_string(b);
@@ -47,14 +61,26 @@ SurfaceMesh build_from_triangles(const std::vector<std::array<double, 3>>& point
   // Pair up the directed edges of all corners by their undirected key.
   const size_t n_corners = 3 * faces.size();
   std::vector<DirectedEdge> des(n_corners);
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (unsigned i = 0; i < 3; ++i) {
-      std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % 3];
-      des[3 * f + i] = {std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(3 * f + i), a < b};
-    }
-  std::sort(des.begin(), des.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
-  });
+  auto pair_up_edges = [&] {
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (unsigned i = 0; i < 3; ++i) {
+        std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % 3];
+        des[3 * f + i] = {std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(3 * f + i), a < b};
+      }
+    std::sort(des.begin(), des.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
+      return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
+    });
+  };
+  pair_up_edges();
+  // Neighbours that run their common edge the same way: the soup's faces disagree about which
+  // side is out. Reversing faces repairs that unless the surface is one-sided.
+  if (has_neighbours_running_alike(des)) {
+    report.reoriented_faces = orient_faces_consistently(points, faces);
+    if (report.reoriented_faces)
+      report.warnings.push_back("reversed " + std::to_string(report.reoriented_faces) +
+                                " face(s) to orient the surface consistently");
+    pair_up_edges();
+  }
 
   // Compact vertex numbering: only referenced vertices are kept.
   std::vector<Index> vmap(n_points, kInvalidIndex);

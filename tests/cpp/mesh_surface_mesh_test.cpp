@@ -106,15 +106,15 @@ TEST(BuildFromTriangles, RejectsNonManifoldEdgeNamingVertices) {
   }
 }
 
-TEST(BuildFromTriangles, RejectsInconsistentOrientation) {
+TEST(BuildFromTriangles, ReversesAFaceThatDisagreesWithItsNeighbour) {
+  // Both faces run the edge 0 -> 1: one of them is reversed (mesh_orient_faces_test has more).
   std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
   std::vector<std::array<std::uint32_t, 3>> t = {{0, 1, 2}, {0, 1, 3}};
-  try {
-    build_from_triangles(p, t);
-    FAIL() << "expected a TopologyError";
-  } catch (const TopologyError& e) {
-    EXPECT_STREQ(e.what(), "inconsistent face orientation at the edge between vertices 0 and 1");
-  }
+  BuildReport report;
+  SurfaceMesh m = build_from_triangles(p, t, &report);
+  EXPECT_EQ(m.n_faces(), 2u);
+  EXPECT_EQ(report.reoriented_faces, 1u);
+  EXPECT_EQ(report.warnings.size(), 1u);
 }
 
 TEST(BuildFromTriangles, DropsRepeatedIndexFacesAndRejectsEmpty) {
