@@ -19,6 +19,14 @@ namespace {
 // Closest reference points farther than this many target lengths from a free vertex are
 // taken only along the vertex normal (see project()).
 constexpr double kFarProjection = 0.25;
+// A corner's target length in multiples of the shortest border edge from it to another corner
+// (average_feature_sizing): the triangles on that edge get sides of at most 4/3 of the target,
+// so their angle at the far corner stays above 2 asin(3 / (8 x 1.5)), 29 degrees.
+constexpr double kFixedSegmentSizing = 1.5;
+// A hole counts as small when its border is shorter than this many target lengths around it
+// (and has at most kSmallHoleEdges edges): target-size edges cannot follow it anyway.
+constexpr double kSmallHoleTargets = 2.0;
+constexpr int kSmallHoleEdges = 16;
 }  // namespace
 
 namespace {
@@ -159,6 +167,7 @@ void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices)
     int n = 0;
     Vertex ends[2];
     int n_ends = 0;
+    double fixed_segment = opt.max_length;
     for (Halfedge h : mesh.halfedges(v)) {
       Vertex w = mesh.to_vertex(h);
       // Only measured neighbours: outside a sculpting frame's region a vertex may never have been
@@ -170,11 +179,23 @@ void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices)
         ++n;
       }
       if (is_feature(mesh.edge(h)) && n_ends < 2) ends[n_ends++] = w;
+      // A border edge between two corners stays as it is (neither end may move or go, and the
+      // border is kept): the triangles on it need edges of its length, or they are slivers (a hole
+      // of three edges 1e-4 of the diagonal across in cgal/ChineseDragon-10kv left 0.8-degree
+      // triangles beside it). Only on a hole smaller than the target (below). Not sharp edges: on
+      // a scan with features on, corners sit all along its noisy feature lines, and sizing their
+      // short edges down multiplied the vertices by up to 6 with no better angle (the lines meet
+      // at tiny angles there themselves). Not the long borders of a CAD model's open panels
+      // (cgal/boeing.off: 2.7 times the vertices, more triangles under 20 degrees, some flat).
+      if (vclass[v] == kCorner && vclass[w] == kCorner && mesh.is_boundary(mesh.edge(h)))
+        fixed_segment = std::min(fixed_segment, glm::length(mesh.position(w) - mesh.position(v)));
     }
     // The paper averages the free neighbours; their minimum keeps the triangles beside a sharp
     // edge as small as the curved side needs (fandisk: Hausdorff 0.210% -> 0.200% of the
     // diagonal for 6% more vertices).
     double size = n ? smallest : opt.max_length;
+    if (fixed_segment < opt.max_length && hole_smaller_than(v, kSmallHoleTargets * size))
+      size = std::min(size, std::max(kFixedSegmentSizing * fixed_segment, opt.min_length));
     // A curved feature line needs its own resolution: a chord of a circle of radius r stays
     // within eps of the arc when it is shorter than sqrt(8 r eps - 4 eps^2).
     if (vclass[v] == kFeatureLine && n_ends == 2) {
@@ -194,6 +215,24 @@ void Remesher::Impl::average_feature_sizing(const std::vector<Vertex>& vertices)
     }
     sizing[v] = size;
   }
+}
+
+// Whether v lies on a border loop shorter than `limit` (a hole smaller than the target length).
+// Walks at most kSmallHoleEdges edges.
+bool Remesher::Impl::hole_smaller_than(Vertex v, double limit) const {
+  Halfedge start;
+  for (Halfedge h : mesh.halfedges(v))
+    if (mesh.is_boundary(h)) start = h;
+  if (!start.is_valid()) return false;
+  double length = 0;
+  Halfedge h = start;
+  for (int i = 0; i < kSmallHoleEdges; ++i) {
+    length += glm::length(mesh.position(mesh.to_vertex(h)) - mesh.position(mesh.from_vertex(h)));
+    if (length >= limit) return false;
+    h = mesh.next(h);
+    if (h == start) return true;
+  }
+  return false;
 }
 
 // Raw discrete curvature is noisy on scanned meshes and the noise would show as needless size

@@ -192,6 +192,7 @@ struct Remesher::Impl : RemeshScratch {
   // the clamp gives every free vertex that length whatever its curvature, so none is measured.
   bool clamp_decides_sizing() const { return !(opt.min_length < opt.max_length); }
   void average_feature_sizing(const std::vector<Vertex>& vertices);
+  bool hole_smaller_than(Vertex v, double limit) const;  // (reference.cpp)
   double reference_sizing_at(const Point& p, std::uint32_t* hint_triangle) const;
   geometry::TriangleTree::ClosestHit closest_on_reference(const Point& p, std::uint32_t hint,
                                                           const Vec3* facing = nullptr, double far = 0) const;
