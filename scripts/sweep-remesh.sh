@@ -29,8 +29,9 @@
 #
 # Resumable: each run's result is cached under $ADASCULPT_DATA/sweep/<hash of ADASCULPT_BIN>/, so an
 # interrupted sweep continues where it stopped and a rebuilt binary starts afresh. The full sweep is
-# 146 usable meshes (135 CGAL, 8 shared, 3 generated; 8 CGAL files skipped: polygon soups, non-manifold, no
-# faces) x 34 settings = 4,964 runs (--list prints the exact count). Most meshes are small: ~0.5 s CPU per
+# 151 usable meshes (140 CGAL, 8 shared, 3 generated; 3 CGAL files skipped: non-manifold, no faces) x 34
+# settings = 5,134 runs (--list prints the exact count; the five *-shuffled.off files load since the loader
+# orients their faces). Most meshes are small: ~0.5 s CPU per
 # run and its measurement, so roughly 20-40 min with -j2 on an idle 2-core machine, plus 10 s for every
 # capped run. --sample (53 runs) takes ~20 s CPU when nothing runs away. Filter with --meshes / --settings;
 # --cached-only re-prints (or --doc's) what a sweep still running has finished.
