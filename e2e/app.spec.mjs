@@ -137,6 +137,20 @@ test('opens OBJ, STL, PLY and OFF through the file input and by drag-and-drop; e
   expect(errors).toEqual([]);
 });
 
+test('a file whose faces disagree about the outside opens, repaired, and the message says so', async ({ page }) => {
+  const errors = watchErrors(page);
+  await open(page);
+  // An octahedron with two of its faces written the other way round.
+  const off = 'OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n' +
+    '3 0 2 4\n3 2 5 0\n3 0 4 3\n3 0 3 5\n3 1 4 2\n3 1 2 5\n3 4 3 1\n3 1 5 3\n';
+  await page.setInputFiles('input[type=file]', { name: 'octahedron.off', mimeType: 'application/octet-stream', buffer: Buffer.from(off) });
+  await expect.poll(async () => (await stats(page)).faces).toBe(8);
+  const toast = page.locator('.adasculpt-toast', { hasText: 'octahedron.off' });
+  await expect(toast).toContainText('repaired: reversed 2 face(s) to orient the surface consistently');
+  await expect(page.locator('.adasculpt-toast.error')).toHaveCount(0);
+  expect(errors).toEqual([]);
+});
+
 test('a malformed file shows a message and keeps the mesh', async ({ page }) => {
   await open(page);
   await save(page, 'before');

@@ -477,7 +477,7 @@ export interface SculptApp extends EventDispatcher<Pick<SculptorEventMap, 'start
    * A file that would need more wasm memory than the page can use (2 GB minus the current mesh and its
    * history; estimated from the header or the size) is refused before it is read.
    */
-  load(source: MeshSource, format?: MeshFormat): Promise<MeshCounts>;
+  load(source: MeshSource, format?: MeshFormat): Promise<MeshCounts & { warnings: string[] }>;
   /** Throws on an unknown key or a bad value (nothing changes then). Returns the core's settings. */
   setParams(params: SculptParams): CoreSettings;
   readonly grab: GrabApi;
@@ -566,6 +566,8 @@ export interface Session {
   hasMesh(): boolean;
   loadBytes(bytes: Uint8Array | ArrayBuffer, nameHint: string): void;
   loadArrays(positions: ArrayLike<number>, indices: ArrayLike<number>): void;
+  /** What the reader repaired in the last load ("reversed 12 face(s) to orient the surface consistently"); [] when nothing. */
+  loadWarnings(): string[];
   setSettings(settings: RemeshParams): void;
   settings(): CoreSettings;
   pick(ox: number, oy: number, oz: number, dx: number, dy: number, dz: number): { hit: boolean; x: number; y: number; z: number };

@@ -150,7 +150,7 @@ export async function createSculptApp(container, options = {}) {
     leftInset();
     viewer.fitView(sculptor.buffers.boundingBox());
     showToolState();
-    return { vertices: quality.vertices, faces: quality.faces };
+    return { vertices: quality.vertices, faces: quality.faces, warnings: session.loadWarnings() };
   }
 
   // The panel's model list and the export names follow the last opened file or sample.
@@ -339,8 +339,10 @@ export async function createSculptApp(container, options = {}) {
   // ---- UI: file input / drop, panel, stats
   const openFile = async (file) => {
     try {
-      await api.load(file);
-      toaster.show(`Opened ${file.name}`);
+      const { warnings } = await api.load(file);
+      // The reader's repairs (each "name: what it did"): said once, so that a changed file is no surprise.
+      const repairs = warnings.map((w) => w.replace(/^.*?: (?=[a-z])/, '')).join('; ');
+      toaster.show(repairs ? `Opened ${file.name}, repaired: ${repairs}` : `Opened ${file.name}`);
     } catch (e) {
       // Reader messages already start with the file name.
       toaster.show(e.message.startsWith(file.name) ? `Could not open ${e.message}` : `Could not open ${file.name}: ${e.message}`, 'error');

@@ -242,9 +242,18 @@ class SessionHandle {
       std::vector<std::array<std::uint32_t, 3>> tris(t.size() / 3);
       std::copy(p.begin(), p.end(), points.empty() ? nullptr : points[0].data());
       std::copy(t.begin(), t.end(), tris.empty() ? nullptr : tris[0].data());
-      session_.load(mesh::build_from_triangles(points, tris));
+      mesh::BuildReport report;
+      mesh::SurfaceMesh m = mesh::build_from_triangles(points, tris, &report);
+      session_.load(std::move(m), std::move(report.warnings));
       sync(true);
     });
+  }
+
+  // The repairs of the last load, one sentence each (Session::load_warnings).
+  val load_warnings() const {
+    val out = val::array();
+    for (const std::string& w : session_.load_warnings()) out.call<void>("push", w);
+    return out;
   }
 
   // {epsilon, minLength, maxLength, features}: numbers are absolute, "0.05%" strings percent of the
@@ -604,6 +613,7 @@ EMSCRIPTEN_BINDINGS(adasculpt) {
       .function("hasMesh", &SessionHandle::has_mesh)
       .function("loadBytes", &SessionHandle::load_bytes)
       .function("loadArrays", &SessionHandle::load_arrays)
+      .function("loadWarnings", &SessionHandle::load_warnings)
       .function("setSettings", &SessionHandle::set_settings)
       .function("settings", &SessionHandle::settings)
       .function("pick", &SessionHandle::pick)

@@ -47,6 +47,7 @@ double percentile(std::vector<double> v, double p) {
 struct Session::Impl {
   mesh::SurfaceMesh mesh;
   bool has_mesh = false;
+  std::vector<std::string> load_warnings;  // (Session::load_warnings)
   double diagonal = 0;
   remesh::RemeshOptions options;  // adaptive; epsilon/min/max/features resolved to absolute values
   bool guard_crossings = false;   // set_settings; kept through loads (a preference, not a length)
@@ -386,9 +387,10 @@ Session::Session() : impl_(std::make_unique<Impl>()) {
 }
 Session::~Session() = default;
 
-void Session::load(mesh::SurfaceMesh m) {
+void Session::load(mesh::SurfaceMesh m, std::vector<std::string> warnings) {
   if (m.n_faces() == 0) throw std::invalid_argument("the mesh has no faces");
   Impl& s = *impl_;
+  s.load_warnings = std::move(warnings);
   s.end_grab();
   if (m.has_garbage()) m.garbage_collection();
   s.drop_remesher();  // before the mesh it holds arrays on goes
@@ -406,10 +408,18 @@ void Session::load(mesh::SurfaceMesh m) {
 }
 
 void Session::load_bytes(const uint8_t* data, size_t size, const std::string& name_hint) {
-  load(io::load_mesh_from_memory(data, size, name_hint));
+  std::vector<std::string> warnings;
+  mesh::SurfaceMesh m = io::load_mesh_from_memory(data, size, name_hint, &warnings);
+  load(std::move(m), std::move(warnings));
 }
 
-void Session::load_file(const std::string& path) { load(io::load_mesh(path)); }
+void Session::load_file(const std::string& path) {
+  std::vector<std::string> warnings;
+  mesh::SurfaceMesh m = io::load_mesh(path, &warnings);
+  load(std::move(m), std::move(warnings));
+}
+
+const std::vector<std::string>& Session::load_warnings() const { return impl_->load_warnings; }
 
 bool Session::has_mesh() const { return impl_->has_mesh; }
 const mesh::SurfaceMesh& Session::mesh() const { return impl_->mesh; }

@@ -78,10 +78,14 @@ class Session {
 
   // Replaces the mesh; resets the history and the settings (defaults relative to the new
   // bounding-box diagonal: epsilon 0.05%, min 0.2%, max 5%, features off). Ends any grab.
-  void load(mesh::SurfaceMesh mesh);
+  // `warnings`: the repairs the reader made to get `mesh` (load_warnings()).
+  void load(mesh::SurfaceMesh mesh, std::vector<std::string> warnings = {});
   // io::load_mesh_from_memory; on error throws and keeps the current mesh.
   void load_bytes(const uint8_t* data, size_t size, const std::string& name_hint);
   void load_file(const std::string& path);
+  // What the reader repaired in the last load (faces reversed to one orientation, non-manifold
+  // vertices split, unreferenced vertices dropped...), one sentence each; empty when nothing.
+  const std::vector<std::string>& load_warnings() const;
   bool has_mesh() const;
   const mesh::SurfaceMesh& mesh() const;
 

@@ -76,6 +76,34 @@ test('load from bytes and from arrays; render buffers match the mesh', { skip },
   });
 });
 
+// A cube whose faces were written with either winding (as CGAL's *-shuffled.off files are).
+function shuffledCubeOff() {
+  const v = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]];
+  const f = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+    [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]];
+  for (const i of [1, 4, 9]) f[i].reverse();
+  return `OFF\n8 12 0\n${v.map((p) => p.join(' ')).join('\n')}\n${f.map((t) => `3 ${t.join(' ')}`).join('\n')}\n`;
+}
+
+test('a load reports what the reader repaired: faces reversed to one orientation', { skip }, () => {
+  withSession((s) => {
+    s.loadBytes(new TextEncoder().encode(shuffledCubeOff()), 'cube.off');
+    assert.strictEqual(quality(s).faces, 12);
+    assert.deepStrictEqual(s.loadWarnings(), ['cube.off: reversed 3 face(s) to orient the surface consistently']);
+    // Outwards: the exported cube encloses a positive volume.
+    const pos = s.positions(), idx = s.indices();
+    let volume6 = 0;
+    for (let t = 0; t < idx.length; t += 3) {
+      const [a, b, c] = [idx[t], idx[t + 1], idx[t + 2]].map((i) => [pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]]);
+      volume6 += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    assert.ok(Math.abs(volume6 - 6) < 1e-9, `volume x 6 = ${volume6}`);
+    // The next load starts afresh.
+    s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
+    assert.deepStrictEqual(s.loadWarnings(), []);
+  });
+});
+
 test('settings round-trip, absolute and percent', { skip }, () => {
   withSession((s) => {
     s.loadBytes(new Uint8Array(sphereObj), 'sphere.obj');
