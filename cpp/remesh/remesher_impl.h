@@ -345,6 +345,7 @@ struct Remesher::Impl : RemeshScratch {
   // ---- passes (split_collapse.cpp, flip_relax.cpp)
   void gather_all_edges();
   size_t split_long_edges();
+  bool refining_wholesale = false;  // (split_long_edges: the guard was off when it started)
   size_t collapse_short_edges();
   size_t flip_edges();
   size_t flip_for_angles(double poor_angle);
