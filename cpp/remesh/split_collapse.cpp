@@ -109,7 +109,11 @@ size_t Remesher::Impl::split_with_mirror(Edge e, bool far_from_reference) {
   // guard is on there only for the fidelity splits, and for the long edges that stray, below):
   // checking each of its splits was 8 % of the instructions of cgal/ChineseDragon-10kv at epsilon
   // 0.01 % (214k splits).
-  const bool unchecked = refining_wholesale && !not_long && !(far_from_reference && edge_strays(e, fidelity_tolerance()));
+  // A long edge whose midpoint strays from the reference: measured once, for both questions, and
+  // only while the guard is on (nothing can be checked or placed without it).
+  const bool long_and_straying =
+      !not_long && far_from_reference && crossing_guard.active() && edge_strays(e, fidelity_tolerance());
+  const bool unchecked = refining_wholesale && !not_long && !long_and_straying;
   if (!unchecked && crossing_guard.split_crosses(mesh, e, mid)) return 0;
   // A long edge whose midpoint strays from the reference (a chord across a crease features do not
   // mark) gets its vertex on the reference too, as a fidelity split does, while the guard can check
@@ -118,8 +122,6 @@ size_t Remesher::Impl::split_with_mirror(Edge e, bool far_from_reference) {
   // stays off the surface to the end: cgal/part.off at epsilon 0.05 %, min length 0.2 %, features
   // off, kept one 3 tolerances off from the third iteration (Hausdorff 0.30 % of the diagonal,
   // bound 0.2 %; 0.13 % now).
-  const bool long_and_straying =
-      !not_long && far_from_reference && crossing_guard.active() && edge_strays(e, fidelity_tolerance());
   if (mirror_axis < 0) {
     if (not_long || long_and_straying)
       split_placed_on_reference(e, mid);

@@ -17,6 +17,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "remesh_test_util.h"
 #include "test_build.h"
 
 using namespace adasculpt;
@@ -42,11 +43,7 @@ struct Remeshed {
 // Adaptive remesh with features off; epsilon and min length as fractions of the diagonal.
 Remeshed remeshed(const SurfaceMesh& input, double epsilon, double min_length) {
   Remeshed r{input, 0};
-  remesh::RemeshOptions o = remesh::default_options_for(r.mesh);
-  const double diagonal = remesh::bounding_box_diagonal(r.mesh);
-  o.epsilon = epsilon * diagonal;
-  o.min_length = min_length * diagonal;
-  remesh::remesh(r.mesh, o);
+  test::remesh_relative(r.mesh, epsilon, min_length);
   r.hausdorff_rel = geometry::distance_between(r.mesh, input, 20000).hausdorff_rel;
   return r;
 }

@@ -17,6 +17,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "remesh_test_util.h"
 
 using namespace adasculpt;
 using mesh::SurfaceMesh;
@@ -77,11 +78,7 @@ TEST(RemeshFixedSegments, TinyHoleGetsTrianglesOfItsSize) {
   for (const double epsilon : {0.0005, 0.005, 0.02}) {
     SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
     SurfaceMesh m = input;
-    remesh::RemeshOptions o = remesh::default_options_for(m);
-    const double diagonal = remesh::bounding_box_diagonal(m);
-    o.epsilon = epsilon * diagonal;
-    o.min_length = 0.0002 * diagonal;
-    remesh::remesh(m, o);
+    test::remesh_relative(m, epsilon, 0.0002);
     EXPECT_NO_THROW(m.validate());
     EXPECT_EQ(geometry::boundary_loops(m), 1);  // the hole is kept
     // Beside the hole (within a few of the sphere's own triangles of it): 3.6 degrees before at

@@ -12,6 +12,7 @@
 #include "mesh/build_from_triangles.h"
 #include "mesh/primitives.h"
 #include "remesh/remesher.h"
+#include "remesh_test_util.h"
 #include "test_build.h"
 
 using namespace adasculpt;
@@ -33,11 +34,7 @@ SurfaceMesh square_with_spike() {
 // the diagonal); returns the symmetric Hausdorff distance to the input over the diagonal.
 double remeshed_hausdorff(const SurfaceMesh& input, double epsilon, double min_length, SurfaceMesh* out) {
   *out = input;
-  remesh::RemeshOptions o = remesh::default_options_for(*out);
-  const double diagonal = remesh::bounding_box_diagonal(*out);
-  o.epsilon = epsilon * diagonal;
-  o.min_length = min_length * diagonal;
-  remesh::remesh(*out, o);
+  test::remesh_relative(*out, epsilon, min_length);
   return geometry::distance_between(*out, input, 20000).hausdorff_rel;
 }
 

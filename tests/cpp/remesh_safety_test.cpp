@@ -15,6 +15,7 @@
 #include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
+#include "remesh_test_util.h"
 #include "test_build.h"
 
 using namespace adasculpt;
@@ -120,11 +121,7 @@ TEST(RemeshSafety, SliverRepairKeepsTheNeedleCylinderRound) {
   for (const double epsilon : {0.0005, 0.002}) {
     SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
     SurfaceMesh m = input;
-    remesh::RemeshOptions o = remesh::default_options_for(m);
-    const double diagonal = remesh::bounding_box_diagonal(m);
-    o.epsilon = epsilon * diagonal;
-    o.min_length = 0.0002 * diagonal;
-    remesh::remesh(m, o);
+    test::remesh_relative(m, epsilon, 0.0002);
     EXPECT_LT(geometry::distance_between(m, input, 20000).hausdorff_rel, 2 * epsilon);
     EXPECT_EQ(geometry::self_intersections(m, 1000).pairs.size(), 0u);
   }
