@@ -1,5 +1,8 @@
-// `adasculpt remesh IN OUT [--uniform] [--epsilon E] [--min-length A] [--max-length B]
-// [--length L] [--iterations N] [--no-projection] [--features DEG] [--max-vertices N] [--json]`
+// `adasculpt remesh IN OUT [--epsilon E] [--min-length A] [--max-length B] | [--uniform] [--length L]
+// [--iterations N] [--no-projection] [--features DEG] [--max-vertices N] [--json]`
+// --length alone means uniform remeshing: a length that silently went unused (adaptive by default)
+// left a user with a mesh at the default tolerance and no word why. The adaptive options with
+// --uniform or --length are a usage error for the same reason.
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -20,7 +23,7 @@ namespace {
 
 struct RemeshArgs {
   std::string input, output;
-  bool uniform = false;
+  bool uniform = false;  // --uniform, or --length given
   std::string epsilon = remesh::percent_text(remesh::kDefaultEpsilonPct),
               min_length = remesh::percent_text(remesh::kDefaultMinLengthPct),
               max_length = remesh::percent_text(remesh::kDefaultMaxLengthPct),
@@ -88,11 +91,15 @@ void register_remesh(CLI::App& app) {
                 "a percentage of the bounding-box diagonal with a % suffix.");
   cmd->add_option("IN", a->input, "input mesh (.off .obj .stl .ply)")->required();
   cmd->add_option("OUT", a->output, "output mesh; the format follows the extension")->required();
-  cmd->add_flag("--uniform", a->uniform, "uniform target length instead of the adaptive sizing field");
-  cmd->add_option("--epsilon", a->epsilon, "approximation tolerance (adaptive)")->capture_default_str();
-  cmd->add_option("--min-length", a->min_length, "smallest target edge length (adaptive)")->capture_default_str();
-  cmd->add_option("--max-length", a->max_length, "largest target edge length (adaptive)")->capture_default_str();
-  cmd->add_option("--length", a->length, "target edge length (uniform)")->capture_default_str();
+  CLI::Option* uniform =
+      cmd->add_flag("--uniform", a->uniform, "uniform target length (--length) instead of the adaptive sizing field");
+  CLI::Option* length =
+      cmd->add_option("--length", a->length, "target edge length (uniform; implies --uniform)")->capture_default_str();
+  for (CLI::Option* adaptive :
+       {cmd->add_option("--epsilon", a->epsilon, "approximation tolerance (adaptive)")->capture_default_str(),
+        cmd->add_option("--min-length", a->min_length, "smallest target edge length (adaptive)")->capture_default_str(),
+        cmd->add_option("--max-length", a->max_length, "largest target edge length (adaptive)")->capture_default_str()})
+    adaptive->excludes(uniform)->excludes(length);
   cmd->add_option("--iterations", a->iterations, "remeshing iterations")->capture_default_str();
   cmd->add_flag("--no-projection", a->no_projection, "do not project vertices back onto the input surface");
   cmd->add_option("--features", a->features, "keep edges sharper than this dihedral angle (degrees); 0 = off")
@@ -101,7 +108,10 @@ void register_remesh(CLI::App& app) {
                   "hard limit on the output's vertices (refinement stops there with a warning)")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print one JSON object with the figures (includes distance to the input)");
-  cmd->callback([a] { run_remesh(*a); });
+  cmd->callback([a, length] {
+    if (length->count() > 0) a->uniform = true;
+    run_remesh(*a);
+  });
 }
 
 }  // namespace adasculpt::cli

@@ -211,3 +211,35 @@ TEST(CliStats, SharedMeshesAgreeWithTheirReadme) {
     EXPECT_NEAR(j["mean_min_angle_deg"].get<double>(), e.mean_min_angle, 0.005) << e.name;
   }
 }
+
+// `remesh --length L` alone remeshes uniformly at L: it used to be ignored (the default was
+// adaptive), and the user got a mesh at the default tolerance without a word.
+TEST(CliRemesh, LengthAloneMeansUniform) {
+  const fs::path out = fs::temp_directory_path() / ("adasculpt_cli_" + std::to_string(::getpid()) + "_out.off");
+  auto vertices = [&](std::vector<std::string> options) {
+    std::vector<std::string> args = {"remesh", data("meshes/hemisphere.off"), out.string(), "--json"};
+    args.insert(args.end(), options.begin(), options.end());
+    CliRun r = run(args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.code == 0 ? nlohmann::json::parse(r.out)["vertices"].get<int>() : -1;
+  };
+  const int length_alone = vertices({"--length", "10%"});
+  EXPECT_EQ(length_alone, vertices({"--uniform", "--length", "10%"}));
+  EXPECT_NE(length_alone, vertices({}));  // the adaptive default
+  EXPECT_LT(length_alone, vertices({"--length", "5%"}));
+  fs::remove(out);
+}
+
+// Adaptive options with a uniform remesh would go unused: a usage error that names them.
+TEST(CliRemesh, AdaptiveAndUniformOptionsConflict) {
+  const std::string in = data("meshes/hemisphere.off"), out = "/nonexistent/out.off";
+  for (const auto& args : std::vector<std::vector<std::string>>{{"--epsilon", "1%", "--length", "2%"},
+                                                                 {"--uniform", "--min-length", "1%"},
+                                                                 {"--max-length", "9%", "--uniform"}}) {
+    std::vector<std::string> all = {"remesh", in, out};
+    all.insert(all.end(), args.begin(), args.end());
+    const CliRun r = run(all);
+    expect_usage_error(r, args[0] + " " + args[2]);
+    EXPECT_NE(r.err.find("exclude"), std::string::npos) << r.err;
+  }
+}
