@@ -318,6 +318,17 @@ struct Remesher::Impl : RemeshScratch {
     double sizing;           // the reference sizing there
   };
   std::vector<CreaseSample> crease_samples;
+  // The creases sampled: the samples of one lie evenly along it (a + j / (count + 1) (b - a), j = 1
+  // .. count, from crease_samples[first] on); the coverage check's quick pass finds those near a face
+  // from the creases of its corners' hint triangles (crease_of_triangle: up to three per triangle,
+  // each crease under both triangles at it).
+  struct SampledCrease {
+    std::uint32_t a, b;  // tree points
+    std::uint32_t first, count;
+  };
+  std::vector<SampledCrease> sampled_creases;
+  std::vector<std::uint32_t> creases_of_triangle_offset, creases_of_triangle;
+  std::vector<std::uint8_t> sample_covered;  // per crease sample, this call
   bool crease_samples_due = true;  // set by build_reference: sampled at the next coverage check
   void sample_reference_creases();
   bool is_reference_segment(std::uint32_t a, std::uint32_t b) const;  // a feature or boundary edge of the reference
