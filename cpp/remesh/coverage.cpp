@@ -265,13 +265,14 @@ size_t Remesher::Impl::cover_reference_points(bool may_split, size_t* splits) {
         const double length2 = glm::dot(along, along);
         if (!(length2 > 0)) continue;
         const double mid = glm::dot(centre - from, along) / length2, half = reach / std::sqrt(length2);
+        // Sample j (1 .. count) lies at j / (count + 1) along the crease.
         const double steps = static_cast<double>(crease.count) + 1;
         const double lo = std::max(1.0, std::ceil((mid - half) * steps));
         const double hi = std::min(static_cast<double>(crease.count), std::floor((mid + half) * steps));
-        for (double j = lo; j <= hi; ++j) {
-          const std::uint32_t sample = crease.first + static_cast<std::uint32_t>(j) - 1;
+        if (!(lo <= hi)) continue;
+        const std::uint32_t end = crease.first + static_cast<std::uint32_t>(hi);
+        for (std::uint32_t sample = crease.first + static_cast<std::uint32_t>(lo) - 1; sample < end; ++sample)
           if (!sample_covered[sample] && covers(crease_samples[sample].p)) sample_covered[sample] = 1;
-        }
       }
     }
   }

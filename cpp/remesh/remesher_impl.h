@@ -320,7 +320,7 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<CreaseSample> crease_samples;
   // The creases sampled: the samples of one lie evenly along it (a + j / (count + 1) (b - a), j = 1
   // .. count, from crease_samples[first] on); the coverage check's quick pass finds those near a face
-  // from the creases of its corners' hint triangles (crease_of_triangle: up to three per triangle,
+  // from the creases of its corners' hint triangles (creases_of_triangle: up to three per triangle,
   // each crease under both triangles at it).
   struct SampledCrease {
     std::uint32_t a, b;  // tree points
