@@ -1,4 +1,4 @@
-// `adasculpt stats MESH [--reference REF] [--json] [--samples N] [--self-intersections [--si-cap N]]`:
+// `adasculpt stats MESH [--reference REF [--features DEG]] [--json] [--samples N] [--self-intersections [--si-cap N]]`:
 // the quality report of a mesh, with a reference its distance to it, and on request the
 // number of self-intersecting face pairs.
 #include <cstdint>
@@ -15,6 +15,7 @@
 #include "geometry/quality.h"
 #include "geometry/inherited_crossings.h"
 #include "geometry/self_intersections.h"
+#include "remesh/feature_sectors.h"
 
 namespace adasculpt::cli {
 
@@ -27,6 +28,9 @@ struct StatsOptions {
   size_t samples = 200000;
   bool self_intersections = false;
   size_t si_cap = 100000;  // a badly broken mesh can have millions of pairs
+  // With a reference: the smallest angle its feature lines (at this feature angle, as `remesh
+  // --features` marks them; 0 = its boundary only) force on a remesh that keeps them.
+  std::optional<double> features;
 };
 
 void print_table(const std::string& path, const geometry::QualityReport& r,
@@ -91,8 +95,23 @@ void run_stats(const StatsOptions& o) {
                                                             &new_pairs);
   }
 
+  std::optional<remesh::FeatureSector> sector;
+  if (o.features) {
+    if (!reference) throw std::invalid_argument("--features needs --reference (the features are the reference's)");
+    if (!(*o.features >= 0 && *o.features < 180)) throw std::invalid_argument("--features must be in [0, 180) degrees");
+    sector = remesh::smallest_feature_sector(*reference, remesh::feature_edge_marks(*reference, *o.features));
+  }
+
   if (!o.json) {
     print_table(o.mesh, report, distance, o.reference, si);
+    if (sector) {
+      std::printf("  smallest feature sector of the reference   %.4f deg", sector->angle_deg);
+      if (sector->vertex.is_valid()) {
+        const Point& at = reference->position(sector->vertex);
+        std::printf(" at (%.6g, %.6g, %.6g)", at.x, at.y, at.z);
+      }
+      std::printf("\n");
+    }
     if (not_inherited)
       std::printf("  pairs not at the reference's own crossings   %zu (the reference has %zu pairs)\n", *not_inherited,
                   *reference_pairs);
@@ -109,6 +128,7 @@ void run_stats(const StatsOptions& o) {
     out["hausdorff_on_reference"] = distance->hausdorff_on_reference;
     out["samples"] = o.samples;
   }
+  if (sector) out["reference_feature_sector_deg"] = sector->angle_deg;
   if (si) {
     out["self_intersecting_pairs"] = si->pairs.size();
     out["self_intersections_capped"] = si->capped;
@@ -155,6 +175,11 @@ void register_stats(CLI::App& app) {
                 "count self-intersecting face pairs (exact; same definition as CGAL's self_intersections)");
   cmd->add_option("--si-cap", options->si_cap, "stop counting self-intersecting pairs at this many")
       ->capture_default_str();
+  cmd->add_option("--features", options->features,
+                  "with --reference: the smallest angle between two feature edges meeting at a vertex of the "
+                  "reference, marked as `remesh --features DEG` marks them (0: boundary edges only); a remesh that "
+                  "keeps the features cannot have a larger minimum angle there")
+      ->check(CLI::Range(0.0, 179.999));
   cmd->callback([options] { run_stats(*options); });
 }
 

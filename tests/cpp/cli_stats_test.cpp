@@ -107,6 +107,27 @@ TEST(CliStats, Reference) {
   EXPECT_LT(j["hausdorff_rel"].get<double>(), 1e-12);
 }
 
+TEST(CliStats, FeatureSectorOfTheReference) {
+  // fandisk's sharp edges at 45 degrees meet at 19.4 degrees at one corner (the sweep judges a
+  // remesh's min angle against that); it is closed, so without features nothing is forced.
+  auto sector = [](const std::string& features) {
+    CliRun r = run({"stats", data("meshes/fandisk.off"), "--reference", data("meshes/fandisk.off"), "--json",
+                    "--samples", "10", "--features", features});
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.code == 0 ? nlohmann::json::parse(r.out)["reference_feature_sector_deg"].get<double>() : -1.0;
+  };
+  EXPECT_NEAR(sector("45"), 19.40, 0.01);
+  EXPECT_EQ(sector("0"), 360.0);
+  CliRun r = run({"stats", data("meshes/fandisk.off"), "--reference", data("meshes/fandisk.off"), "--features", "45",
+                  "--samples", "10"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("smallest feature sector of the reference   19.399"), std::string::npos) << r.out;
+  expect_usage_error(run({"stats", data("meshes/fandisk.off"), "--features", "45"}), "--features without --reference");
+  expect_usage_error(run({"stats", data("meshes/fandisk.off"), "--reference", data("meshes/fandisk.off"), "--features",
+                          "200"}),
+                     "--features out of range");
+}
+
 TEST(CliStats, SelfIntersections) {
   // Two separate triangles, the second piercing the first.
   const fs::path crossing = write_temp("crossing.off",

@@ -10,9 +10,10 @@ sweep = importlib.util.module_from_spec(SPEC)
 SPEC.loader.exec_module(sweep)
 
 
-def run(setting, vertices, hausdorff_pct, mesh="m.off"):
+def run(setting, vertices, hausdorff_pct, mesh="m.off", min_angle=30.0, feature_sector=360.0):
     return {"mesh": mesh, "setting": setting, "status": "ok", "cpu_s": 0.1, "rss_mb": 20, "note": "",
-            "vertices": vertices, "hausdorff_pct": hausdorff_pct, "new_si": 0, "si_capped": False}
+            "vertices": vertices, "hausdorff_pct": hausdorff_pct, "new_si": 0, "si_capped": False,
+            "min_angle": min_angle, "feature_sector": feature_sector}
 
 
 def kinds(results):
@@ -48,6 +49,21 @@ class MonotoneCounts(unittest.TestCase):
         self.assertEqual(got, [("monotone", "eps5-min0.2-f0")])
         got = kinds([run("eps1-min0.2-f0", 1000, 1.0), run("eps2-min0.2-f0", 1020, 1.0)])
         self.assertEqual(got, [("monotone", "eps2-min0.2-f0")])
+
+
+class MinAngle(unittest.TestCase):
+    def test_twenty_degrees_where_no_feature_lines_meet(self):
+        self.assertEqual(kinds([run("eps0.5-min0.2-f0", 100, 0.5, min_angle=20.5)]), [])
+        self.assertEqual(kinds([run("eps0.5-min0.2-f0", 100, 0.5, min_angle=19.5)]), [("min angle", "eps0.5-min0.2-f0")])
+        # Feature lines meeting at 40 degrees do not excuse anything under 20.
+        self.assertEqual(kinds([run("eps0.5-min0.2-f45", 100, 0.5, min_angle=19.5, feature_sector=40)]),
+                         [("min angle", "eps0.5-min0.2-f45")])
+
+    def test_a_narrow_feature_sector_lowers_the_bound(self):
+        # Two feature lines 10 degrees apart: 9 degrees (0.9 x 10) is what a remesh must reach.
+        self.assertEqual(kinds([run("eps0.5-min0.2-f45", 100, 0.5, min_angle=9.5, feature_sector=10)]), [])
+        self.assertEqual(kinds([run("eps0.5-min0.2-f45", 100, 0.5, min_angle=8.5, feature_sector=10)]),
+                         [("min angle", "eps0.5-min0.2-f45")])
 
 
 if __name__ == "__main__":
