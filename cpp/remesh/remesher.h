@@ -91,8 +91,9 @@ class Remesher {
   // (the long edges to a split's vertex take two more iterations to reach fair triangles).
   IterationStats iterate(bool pins_move_only = false);
   // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
-  // that no collapse or flip could remove to better places on the reference surface. Returns
-  // the number of vertices moved (0 before the first iteration).
+  // that no collapse or flip could remove to better places on the reference surface, then
+  // collapses or flips away the triangles still under a degree. Returns the number of vertices
+  // moved (0 before the first iteration).
   size_t polish();
   // One iteration restricted to the given vertices: only edges with both ends in the set are
   // touched and vertices on the border of the set stay where they are. No projection; the
