@@ -96,11 +96,8 @@ void run_stats(const StatsOptions& o) {
   }
 
   std::optional<remesh::FeatureSector> sector;
-  if (o.features) {
-    if (!reference) throw std::invalid_argument("--features needs --reference (the features are the reference's)");
-    if (!(*o.features >= 0 && *o.features < 180)) throw std::invalid_argument("--features must be in [0, 180) degrees");
+  if (o.features)  // (CLI11 checks it comes with --reference and its range)
     sector = remesh::smallest_feature_sector(*reference, remesh::feature_edge_marks(*reference, *o.features));
-  }
 
   if (!o.json) {
     print_table(o.mesh, report, distance, o.reference, si);
@@ -167,7 +164,8 @@ void register_stats(CLI::App& app) {
   auto options = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "Print the quality report of a mesh (and its distance to a reference)");
   cmd->add_option("MESH", options->mesh, "mesh file (.off .obj .stl .ply)")->required();
-  cmd->add_option("--reference", options->reference, "reference mesh: adds RMS and Hausdorff distance");
+  CLI::Option* reference =
+      cmd->add_option("--reference", options->reference, "reference mesh: adds RMS and Hausdorff distance");
   cmd->add_flag("--json", options->json, "print one JSON object instead of the table");
   cmd->add_option("--samples", options->samples, "area samples per direction for the distance")
       ->capture_default_str();
@@ -179,7 +177,8 @@ void register_stats(CLI::App& app) {
                   "with --reference: the smallest angle between two feature edges meeting at a vertex of the "
                   "reference, marked as `remesh --features DEG` marks them (0: boundary edges only); a remesh that "
                   "keeps the features cannot have a larger minimum angle there")
-      ->check(CLI::Range(0.0, 179.999));
+      ->check(CLI::Range(0.0, 179.999))
+      ->needs(reference);
   cmd->callback([options] { run_stats(*options); });
 }
 
