@@ -33,7 +33,7 @@
 # settings = 5,134 runs (--list prints the exact count; the five *-shuffled.off files load since the loader
 # orients their faces). Most meshes are small: ~0.5 s CPU per
 # run and its measurement, so roughly 20-40 min with -j2 on an idle 2-core machine, plus 10 s for every
-# capped run. --sample (53 runs) takes ~20 s CPU when nothing runs away. Filter with --meshes / --settings;
+# capped run. --sample (55 runs) takes ~20 s CPU when nothing runs away. Filter with --meshes / --settings;
 # --cached-only re-prints (or --doc's) what a sweep still running has finished.
 set -euo pipefail
 cd "$(dirname "$0")/.."

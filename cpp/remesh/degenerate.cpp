@@ -63,6 +63,27 @@ bool Remesher::Impl::repair_flip_ok(Edge e) const {
   return !is_feature(e) && !mesh.is_boundary(e) && in_scope(e) && flip_spares_masked(e) && mesh.is_flip_ok(e);
 }
 
+// A cap whose long side is on the border, at an end of it with no other triangle (the border
+// folds back on itself there, as at the apex of a cone cut open along a line): that end collapses
+// onto the cap's corner along the short side, which removes the cap and nothing else. Left in
+// place, the split passes cut the flat triangle's border edge again and again (a four-vertex
+// input of one such cap and one triangle ended with 1,187 vertices, mean min angle 1.6 degrees).
+// The end is a corner of the border, and no other repair may move a corner; here it carries no
+// surface, so the feature classes do not apply.
+bool Remesher::Impl::remove_border_ear(Halfedge long_side) {
+  for (const Halfedge side : {mesh.opposite(mesh.prev(long_side)), mesh.next(long_side)}) {
+    // side runs from an end of the long side to the cap's corner; the end has no other triangle
+    // when both its edges are on the border.
+    const Vertex end = mesh.from_vertex(side);
+    if (scope[end] != kActive || masked(end)) continue;
+    if (!mesh.is_boundary(mesh.edge(side)) || mesh.valence(end) != 2) continue;
+    if (!mesh.is_collapse_ok(side)) continue;
+    apply_collapse(side, false);
+    return true;
+  }
+  return false;
+}
+
 size_t Remesher::Impl::remove_degenerate_faces() {
   if (mirror_axis >= 0) return 0;  // a repair on one side only would break the symmetry
   size_t repaired = 0;
@@ -85,6 +106,10 @@ size_t Remesher::Impl::remove_degenerate_faces() {
         continue;
       }
       const Edge e = mesh.edge(long_side);
+      if (mesh.is_boundary(e) && remove_border_ear(long_side)) {
+        ++this_pass;
+        continue;
+      }
       if (!repair_flip_ok(e)) continue;
       const mesh::Face across = mesh.face(mesh.opposite(long_side));
       bool across_needle;

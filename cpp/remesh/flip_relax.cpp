@@ -329,7 +329,8 @@ void Remesher::Impl::relax_vertices() {
 
 // Removes triangles with an angle below `angle_deg` (zero-area and needle triangles of the
 // input, and the rare sliver the regular passes could not avoid): collapse their shortest edge
-// when it is short, otherwise flip their longest edge (a "cap" has no short edge).
+// when it is short, otherwise flip their longest edge (a "cap" has no short edge); a cap on a
+// border or feature line, whose longest edge may not flip, collapses one of its other two edges.
 //
 // The collapse and the flip may take the surface a few tolerances from the reference, not farther
 // (the regular passes keep one; held to one here, the sliver stays more often: gen/thin_plate at
@@ -396,8 +397,8 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       // A sliver's neighbours may end up a little beyond the split threshold, and its fan may turn
       // by up to 90 degrees (folded input such as self-intersections): accepted here, the next
       // passes even that out, while the sliver would stay forever. Never a fold-over.
-      auto collapse_shortest = [&]() {
-        for (Halfedge h : {hs[shortest], mesh.opposite(hs[shortest])}) {
+      auto collapse_edge = [&](int i) {
+        for (Halfedge h : {hs[i], mesh.opposite(hs[i])}) {
           const Point& target = mesh.position(mesh.to_vertex(h));
           if (collapse_geometry_ok(h, target, false, false, 0.5) && collapse_topology_ok(h) &&
               !collapse_crosses(h, target, false) &&
@@ -421,7 +422,17 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
         }
         return true;
       };
-      const bool done = (len[shortest] < 0.2 * len[longest] && collapse_shortest()) || flip_longest();
+      const bool short_edge = len[shortest] < 0.2 * len[longest];
+      bool done = (short_edge && collapse_edge(shortest)) || flip_longest();
+      // A cap whose longest edge may not flip (a border or feature edge) goes by a collapse of one
+      // of its two other edges, the shorter first: cgal/mask_cone.off's cone, cut open along a line,
+      // kept a flat triangle at its apex between a border vertex and its two border neighbours.
+      const int middle = 3 - shortest - longest;
+      if (!done && !short_edge) done = collapse_edge(shortest);
+      if (!done) done = collapse_edge(middle);
+      // A flat cap on the border at a vertex with no other triangle: removed exactly (degenerate.cpp).
+      if (!done && mirror_axis < 0 && mesh.is_boundary(mesh.edge(hs[longest])) && is_zero_area(f))
+        done = remove_border_ear(hs[longest]);
       fixed_this_pass += done;
     }
     fixed += fixed_this_pass;

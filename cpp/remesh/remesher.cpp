@@ -23,6 +23,9 @@ constexpr double kSliverAngleDeg = 12.0;
 // Triangles below this angle get their corners moved (sliver.cpp): in necks after each
 // whole-mesh iteration, anywhere once the iterations are done (Remesher::polish).
 constexpr double kPlacedSliverAngleDeg = 25.0;
+// Triangles still below this angle when a batch remesh ends get a collapse that improves them
+// (angle_collapse.cpp): issue 17's minimum-angle target.
+constexpr double kTargetAngleDeg = 20.0;
 // Region iterations between two measurements of the sizing field (see iterate_region).
 constexpr int kRegionSizingInterval = 4;
 // A scope this large (a grab's ROI) measures a slice of itself in every call instead, the whole
@@ -309,6 +312,7 @@ size_t Remesher::polish() {
   m.enter_whole_mesh();
   m.start_crossing_guard();
   const size_t moved = m.place_sliver_vertices(kPlacedSliverAngleDeg, false);
+  m.collapse_for_angles(kTargetAngleDeg);
   // The last iteration's sliver repair ran before its pins (cover_reference_points) and the
   // moves above, which can leave a vertex on the line through the other two corners of a
   // triangle (cgal/boeing.off at epsilon 0.5 %, once the strips between its panels' creases were

@@ -232,6 +232,7 @@ struct Remesher::Impl : RemeshScratch {
   // ---- zero-area input triangles (degenerate.cpp): collapses and flips that leave the surface
   // as it is; returns the repairs done. Before the reference is built, without the crossing guard.
   size_t remove_degenerate_faces();
+  bool remove_border_ear(Halfedge long_side);
   bool is_zero_area(mesh::Face f) const;
   Halfedge longest_side(mesh::Face f, bool* needle, Halfedge* shortest) const;
   bool repair_flip_ok(Edge e) const;
@@ -363,6 +364,9 @@ struct Remesher::Impl : RemeshScratch {
   size_t flip_for_angles(double poor_angle);
   void relax_vertices();
   size_t fix_bad_faces(double angle_deg);
+  // Collapses that raise the smallest angle of triangles below angle_deg (angle_collapse.cpp).
+  size_t collapse_for_angles(double angle_deg);
+  double worst_angle_around(Vertex v) const;
   // Moves the free corners of triangles under angle_deg, and in necks those of crossing
   // triangles, to better places on the reference (sliver.cpp); only in necks with necks_only.
   size_t place_sliver_vertices(double angle_deg, bool necks_only);

@@ -23,6 +23,8 @@ constexpr int kRegionSplitPasses = 2;
 constexpr size_t kRegionCollapseShare = 8;
 // Squared length / squared collapse threshold below which an edge may collapse to its midpoint.
 constexpr double kMidpointCollapseRatio = 0.25;
+// sin^2 of one degree: no collapse leaves a triangle flatter than that (collapse_geometry_ok).
+constexpr double kDegenerateSin2 = 3.0459e-4;
 
 // Called for every edge of the scope by both passes: read straight from the flat arrays, and
 // inlined (g++ -O2 kept it out of line, 5 % of a sculpting frame's instructions in calls).
@@ -319,6 +321,11 @@ bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool 
       Vec3 n_new = glm::cross(pw - target, pw2 - target);
       double len_new = glm::length(n_new), len_old = glm::length(n_old);
       if (len_new <= 1e-14 * glm::dot(pw - target, pw - target)) return false;
+      // No new triangle under a degree (it would be one as flat as those the input cleanup
+      // removes): cgal/mask_cone.off's cone, cut open along a line, lost its apex fan down to one
+      // triangle across the cut, flat, which no flip could mend (its long side is the border).
+      if (min_angle_sin2(target, pw, pw2) < kDegenerateSin2 && min_angle_sin2(pc, pw, pw2) >= kDegenerateSin2)
+        return false;
       // Old degenerate triangles have no orientation to keep.
       if (len_old > 0 && glm::dot(n_old, n_new) < min_cos * len_old * len_new) return false;
     }

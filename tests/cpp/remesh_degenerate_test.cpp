@@ -41,6 +41,15 @@ SurfaceMesh square_with_zero_length_edge() {
   return mesh::build_from_triangles(points, Triangles{{0, 1, 4}, {1, 2, 5}, {2, 3, 5}, {3, 0, 4}, {1, 5, 4}, {3, 4, 5}});
 }
 
+// A flat cap whose long side is on the border and ends at a vertex with no other triangle (the
+// border folds back on itself there: the apex of a cone cut open along a line looks like this
+// when the cut's two sides meet), beside one triangle with area: (0,0)-(1,0)-(2,0) and
+// (2,0)-(1,0)-(1.5,1). No flip can remove the cap (its long side is the border).
+SurfaceMesh cap_on_a_border_fold() {
+  const Points points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1.5, 1, 0}};
+  return mesh::build_from_triangles(points, Triangles{{0, 1, 2}, {2, 1, 3}});
+}
+
 size_t zero_area_faces(const SurfaceMesh& m) {
   size_t n = 0;
   for (mesh::Face f : m.faces()) {
@@ -64,6 +73,7 @@ TEST(RemeshDegenerate, TheInputsHaveZeroAreaTriangles) {  // what the tests belo
   EXPECT_EQ(zero_area_faces(sliding_strip()), 4u);
   EXPECT_EQ(zero_area_faces(sliding_clean()), 0u);
   EXPECT_EQ(zero_area_faces(square_with_zero_length_edge()), 2u);
+  EXPECT_EQ(zero_area_faces(cap_on_a_border_fold()), 1u);
 }
 
 // Before: 18,444 vertices with 13,261 zero-area triangles at length 0.5 % (the strip's splits put
@@ -124,4 +134,23 @@ TEST(RemeshDegenerate, BorderCornersStayWithinTheTolerance) {
   remesh::remesh(fixed_length, uniform(input, 2.0));
   EXPECT_LE(geometry::distance_between(fixed_length, input, 20000).hausdorff_rel, 0.02);  // the length
   EXPECT_GE(geometry::quality_report(fixed_length).min_angle_deg, 30.0);
+}
+
+// Before: the split passes cut the cap's border edge again and again, each cut leaving more flat
+// triangles on the line (1,187 vertices at the default epsilon, mean min angle 1.6 degrees). The
+// fold's vertex carries no surface but the cap's, and collapses onto the cap's corner.
+TEST(RemeshDegenerate, CapOnABorderFoldIsRemoved) {
+  const SurfaceMesh input = cap_on_a_border_fold();
+  for (const bool adaptive : {true, false}) {
+    SCOPED_TRACE(adaptive ? "adaptive, default epsilon" : "uniform length 10 %");
+    SurfaceMesh m = input;
+    const remesh::RemeshReport r = remesh::remesh(m, adaptive ? remesh::default_options_for(m) : uniform(m, 10.0));
+    ASSERT_NO_THROW(m.validate());
+    EXPECT_TRUE(r.warning.empty()) << r.warning;
+    EXPECT_EQ(zero_area_faces(m), 0u);
+    const geometry::QualityReport q = geometry::quality_report(m);
+    EXPECT_NEAR(q.area, 0.5, 1e-9);  // the triangle with area, all of it
+    EXPECT_GE(q.min_angle_deg, 25.0);
+    EXPECT_LT(m.n_vertices(), 200u);
+  }
 }
