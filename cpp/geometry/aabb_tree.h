@@ -94,10 +94,14 @@ class TriangleTree {
   static constexpr std::uint32_t kLeafSize = 4;
   static constexpr int kMaxDepth = 64;
 
-  std::uint32_t split(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids, std::uint32_t first,
+  // Per triangle (in tris_ order): its centroid and bounding box, computed once for the build.
+  struct BuildInput {
+    std::vector<Point> centroids, lo, hi;
+  };
+  std::uint32_t split(std::vector<std::uint32_t>& order, const BuildInput& in, std::uint32_t first,
                       std::uint32_t count, int depth) const;
-  std::uint32_t build_node(std::vector<std::uint32_t>& order, const std::vector<Point>& centroids,
-                          std::uint32_t first, std::uint32_t count, int depth);
+  std::uint32_t build_node(std::vector<std::uint32_t>& order, const BuildInput& in, std::uint32_t first,
+                          std::uint32_t count, int depth);
   template <class Accept>
   void search(const Point& q, ClosestHit& best, Accept&& accept) const;
   void test_triangle(const Point& q, std::uint32_t tri, ClosestHit& best) const;

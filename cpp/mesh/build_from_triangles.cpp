@@ -27,6 +27,40 @@ bool has_neighbours_running_alike(const std::vector<DirectedEdge>& sorted) {
   return false;
 }
 
+// Sorts by (lo, hi, corner): a counting sort by lo, then each vertex's few edges by hi. The
+// edges come in corner order and both steps are stable, so equal keys stay in corner order: the
+// same sequence as a comparison sort, in linear time (std::sort was 4 % of the instructions of a
+// command-line remesh of bunny.off at the defaults, loading included).
+constexpr std::uint32_t kInsertionSortMax = 32;
+
+void sort_by_key(std::vector<DirectedEdge>& des, std::uint32_t n_points) {
+  std::vector<std::uint32_t> start(size_t(n_points) + 1, 0);
+  for (const DirectedEdge& d : des) ++start[d.lo + 1];
+  for (std::uint32_t v = 0; v < n_points; ++v) start[v + 1] += start[v];
+  std::vector<DirectedEdge> sorted(des.size());
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (const DirectedEdge& d : des) sorted[next[d.lo]++] = d;
+  }
+  for (std::uint32_t v = 0; v < n_points; ++v) {
+    // A fan's centre (a CAD disc's, a cone's apex) may have thousands: sorted as before.
+    if (start[v + 1] - start[v] > kInsertionSortMax) {
+      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1], [](const DirectedEdge& x, const DirectedEdge& y) {
+        return x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
+      });
+      continue;
+    }
+    // Insertion sort by hi: a vertex has a handful of edges from it as the lower end.
+    for (std::uint32_t i = start[v] + 1; i < start[v + 1]; ++i) {
+      const DirectedEdge d = sorted[i];
+      std::uint32_t j = i;
+      for (; j > start[v] && sorted[j - 1].hi > d.hi; --j) sorted[j] = sorted[j - 1];
+      sorted[j] = d;
+    }
+  }
+  des.swap(sorted);
+}
+
 std::string vertex_pair(std::uint32_t a, std::uint32_t b) {
   return "vertices " + std::to_string(a) + " and " + std::to_string(b);
 }
@@ -67,9 +101,7 @@ SurfaceMesh build_from_triangles(const std::vector<std::array<double, 3>>& point
         std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % 3];
         des[3 * f + i] = {std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(3 * f + i), a < b};
       }
-    std::sort(des.begin(), des.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
-      return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
-    });
+    sort_by_key(des, n_points);
   };
   pair_up_edges();
   // Neighbours that run their common edge the same way: the soup's faces disagree about which

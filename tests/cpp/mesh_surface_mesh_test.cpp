@@ -95,6 +95,29 @@ TEST(BuildFromTriangles, SplitsNonManifoldVertex) {
   EXPECT_NE(report.warnings[0].find("non-manifold"), std::string::npos);
 }
 
+// The edges are paired by a counting sort on their lower vertex, then a sort of each vertex's
+// few edges; a fan's centre has many (this one 600, with the other corners in shuffled order).
+// Every edge must still find its twin: one disc, 600 border edges, 600 inner ones.
+TEST(BuildFromTriangles, PairsTheEdgesOfAVertexWithHundredsOfThem) {
+  constexpr std::uint32_t kFan = 600;
+  std::vector<std::array<double, 3>> p = {{0, 0, 0}};
+  std::vector<std::uint32_t> slot(kFan);  // rim position i gets point index slot[i]
+  for (std::uint32_t i = 0; i < kFan; ++i) slot[i] = 1 + (i * 7919u) % kFan;
+  p.resize(kFan + 1);
+  for (std::uint32_t i = 0; i < kFan; ++i) {
+    const double a = 2 * M_PI * i / kFan;
+    p[slot[i]] = {std::cos(a), std::sin(a), 0};
+  }
+  std::vector<std::array<std::uint32_t, 3>> t;
+  for (std::uint32_t i = 0; i < kFan; ++i) t.push_back({0, slot[i], slot[(i + 1) % kFan]});
+  const SurfaceMesh m = build_from_triangles(p, t);
+  ASSERT_NO_THROW(m.validate());
+  EXPECT_EQ(m.n_vertices(), kFan + 1);
+  EXPECT_EQ(m.n_edges(), 2 * kFan);
+  EXPECT_EQ(euler_characteristic(m), 1);
+  EXPECT_EQ(m.valence(Vertex(0)), kFan);
+}
+
 TEST(BuildFromTriangles, RejectsNonManifoldEdgeNamingVertices) {
   std::vector<std::array<double, 3>> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
   std::vector<std::array<std::uint32_t, 3>> t = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
