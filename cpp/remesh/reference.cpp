@@ -328,6 +328,7 @@ void Remesher::Impl::build_reference() {
     clamp_sizing_to_thickness(all);
     average_feature_sizing(all);
     clamp_sizing_to_strips();
+    clamp_sizing_to_short_lines();
     limit_sizing_gradation(mesh, all, sizing, kGradation);
   } else {
     for (Vertex v : all) sizing[v] = opt.target_length;

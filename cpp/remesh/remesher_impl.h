@@ -188,6 +188,7 @@ struct Remesher::Impl : RemeshScratch {
   // Lowers the sizing of free vertices where the part is thinner than it (thickness.cpp); needs
   // the reference tree (build_reference).
   void clamp_sizing_to_thickness(const std::vector<Vertex>& vertices);
+  void clamp_sizing_to_short_lines();  // short border edges between corners (strips.cpp)
   void clamp_sizing_to_strips();  // creases side by side, narrower than the sizing (strips.cpp)
   // min_length == max_length (a constant detail, as the brush comparison and some sculptors use):
   // the clamp gives every free vertex that length whatever its curvature, so none is measured.

@@ -59,6 +59,26 @@ SurfaceMesh stepped_cylinder(double ring) {
   return mesh::build_from_triangles(points, triangles);
 }
 
+// A unit square plate of 50 x 50 cells with a notch one cell deep and ten wide cut into its
+// bottom border: the notch's corners turn by 90 degrees, 0.02 apart, in a flat plate whose sizing
+// is the max length.
+SurfaceMesh notched_plate() {
+  constexpr std::uint32_t kCells = 50, kNotchFirst = 20, kNotchCells = 10;
+  std::vector<std::array<double, 3>> points;
+  for (std::uint32_t j = 0; j <= kCells; ++j)
+    for (std::uint32_t i = 0; i <= kCells; ++i) points.push_back({double(i) / kCells, double(j) / kCells, 0});
+  auto at = [&](std::uint32_t i, std::uint32_t j) { return j * (kCells + 1) + i; };
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (std::uint32_t j = 0; j < kCells; ++j)
+    for (std::uint32_t i = 0; i < kCells; ++i) {
+      if (j == 0 && i >= kNotchFirst && i < kNotchFirst + kNotchCells) continue;
+      triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  // The notch's bottom corners are left without a triangle: build_from_triangles drops them.
+  return mesh::build_from_triangles(points, triangles);
+}
+
 remesh::RemeshOptions adaptive(const SurfaceMesh& m, double epsilon_pct, double features) {
   remesh::RemeshOptions o = remesh::default_options_for(m);
   const double d = remesh::bounding_box_diagonal(m);
@@ -94,4 +114,20 @@ TEST(RemeshStrips, RingTheToleranceMayCutAcrossIsNotRefined) {
   remesh::remesh(m, adaptive(input, 0.5, 0));
   EXPECT_LE(m.n_vertices(), 1200u);
   EXPECT_GE(geometry::quality_report(m).min_angle_deg, 20.0);
+}
+
+// Short border edges between corners (strips.cpp clamp_sizing_to_short_lines): the notch's sides
+// are border edges 0.02 long between two corners, and the triangle on each had them as its base
+// under sides as long as the plate's sizing (14.0 degrees at epsilon 0.5 % before the clamp).
+TEST(RemeshStrips, ShortBorderEdgeBetweenCornersGetsTrianglesThatFitIt) {
+  const SurfaceMesh input = notched_plate();
+  for (const double epsilon_pct : {0.5, 2.0}) {
+    SCOPED_TRACE("epsilon " + std::to_string(epsilon_pct) + " %");
+    SurfaceMesh m = input;
+    const remesh::RemeshReport r = remesh::remesh(m, adaptive(input, epsilon_pct, 0));
+    ASSERT_NO_THROW(m.validate());
+    EXPECT_TRUE(r.warning.empty()) << r.warning;
+    EXPECT_GE(geometry::quality_report(m).min_angle_deg, 20.0);
+    EXPECT_LE(m.n_vertices(), 400u);  // about 290 without the notch's refinement
+  }
 }
