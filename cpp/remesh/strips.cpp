@@ -110,11 +110,12 @@ void Remesher::Impl::clamp_sizing_to_strips() {
 // cgal/elephant-with-holes 12.6 degrees at 5 %. Both corners stay (they are the border's), so
 // the sizing there is clamped to kShortEdgeLengths times the edge, and the triangles on it get
 // sides that fit it. Only where the input's own edges at both corners are at most kLocalSpread
-// times that: the clamp is set at the corners and interpolated over the input's triangles, and on
-// a coarse input (gen/thin_plate's 1 x 1 faces around its 0.002 rim) it filled whole faces with
-// the small sizing (0.3 s -> past the sweep's 10 s cap). Feature lines are left out: on scans
-// with features on their corners come every few edges, and clamping them there doubled or
-// tripled the vertices (cgal/bull at epsilon 2 %, features 45: 3,460 -> 12,280).
+// times that: the clamp is set at the corners and interpolated over the input's triangles, which
+// on a coarse input fills whole faces with the small sizing. Feature lines are left out: clamped
+// at their corners too, and without the local condition, gen/thin_plate at features 45 (1 x 1
+// faces around a 0.002 rim) went from 0.05 s past the sweep's 10 s cap, and scans at features 45,
+// whose corners come every few edges, got 2-3.5 times the vertices (cgal/bull at epsilon 2 %:
+// 3,460 -> 12,280).
 void Remesher::Impl::clamp_sizing_to_short_lines() {
   auto local = [&](Vertex v, double cap) {
     for (Halfedge h : mesh.halfedges(v))
