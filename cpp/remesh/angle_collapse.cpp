@@ -27,19 +27,6 @@ namespace {
 constexpr int kMaxAnglePasses = 3;
 }  // namespace
 
-// The smallest angle (as its squared sine) among the triangles around v.
-double Remesher::Impl::worst_angle_around(Vertex v) const {
-  double worst = 1.0;
-  for (Halfedge out : mesh.halfedges(v)) {
-    if (mesh.is_boundary(out)) continue;
-    const Point& a = mesh.position(v);
-    const Point& b = mesh.position(mesh.to_vertex(out));
-    const Point& c = mesh.position(mesh.to_vertex(mesh.next(out)));
-    worst = std::min(worst, min_angle_sin2(a, b, c));
-  }
-  return worst;
-}
-
 size_t Remesher::Impl::collapse_for_angles(double angle_deg) {
   const double sin_limit = portable::sin(angle_deg * M_PI / 180.0);
   const double sin2_limit = sin_limit * sin_limit;
@@ -61,7 +48,7 @@ size_t Remesher::Impl::collapse_for_angles(double angle_deg) {
         for (const Halfedge h : {side, mesh.opposite(side)}) {
           const double after = collapse_quality(h);
           // Better than the worst triangle the collapse reshapes or removes, and than the best so far.
-          if (after <= best_after || after <= worst_angle_around(mesh.from_vertex(h))) continue;
+          if (after <= best_after || after <= fan_min_angle_sin2(mesh.from_vertex(h), mesh.position(mesh.from_vertex(h)), Vertex())) continue;
           const Point& target = mesh.position(mesh.to_vertex(h));
           if (!collapse_topology_ok(h) || !collapse_geometry_ok(h, target, false, false)) continue;
           if (!collapse_keeps_fidelity(h, target, false)) continue;

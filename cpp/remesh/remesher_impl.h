@@ -367,7 +367,6 @@ struct Remesher::Impl : RemeshScratch {
   size_t fix_bad_faces(double angle_deg);
   // Collapses that raise the smallest angle of triangles below angle_deg (angle_collapse.cpp).
   size_t collapse_for_angles(double angle_deg);
-  double worst_angle_around(Vertex v) const;
   // Moves the free corners of triangles under angle_deg, and in necks those of crossing
   // triangles, to better places on the reference (sliver.cpp); only in necks with necks_only.
   size_t place_sliver_vertices(double angle_deg, bool necks_only);
@@ -445,6 +444,9 @@ struct Remesher::Impl : RemeshScratch {
   bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true,
                             double min_cos = 0.5) const;
   double collapse_quality(Halfedge h) const;
+  // The smallest angle (squared sine) of the triangles around v with v moved to `at`, leaving out
+  // those with the corner `skip` (the ones a collapse towards it removes; none when invalid).
+  double fan_min_angle_sin2(Vertex v, const Point& at, Vertex skip) const;
   // ---- safety guards (safety.cpp)
   // v's fan: twice its area-weighted normal (not normalised), and whether two neighbouring
   // triangles (or the last and first) turn by more than acos(kCreaseCos): v sits on a sharp edge,

@@ -349,14 +349,16 @@ bool Remesher::Impl::collapse_allowed(Halfedge h) const {
 // The smallest angle among the triangles that collapsing h would reshape, as its squared sine
 // (larger is better).
 double Remesher::Impl::collapse_quality(Halfedge h) const {
-  Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
-  const Point& p1 = mesh.position(v1);
+  return fan_min_angle_sin2(mesh.from_vertex(h), mesh.position(mesh.to_vertex(h)), mesh.to_vertex(h));
+}
+
+double Remesher::Impl::fan_min_angle_sin2(Vertex v, const Point& at, Vertex skip) const {
   double worst = 1.0;
-  for (Halfedge out : mesh.halfedges(v0)) {
+  for (Halfedge out : mesh.halfedges(v)) {
     if (mesh.is_boundary(out)) continue;
     Vertex w = mesh.to_vertex(out), w2 = mesh.to_vertex(mesh.next(out));
-    if (w == v1 || w2 == v1) continue;
-    worst = std::min(worst, min_angle_sin2(p1, mesh.position(w), mesh.position(w2)));
+    if (w == skip || w2 == skip) continue;
+    worst = std::min(worst, min_angle_sin2(at, mesh.position(w), mesh.position(w2)));
   }
   return worst;
 }
