@@ -32,6 +32,9 @@ constexpr int kRegionSizingInterval = 4;
 // scope over kRegionSizingInterval calls: measuring a 10k-vertex region at once (20-26M
 // instructions) made every 4th frame of a pull 1.5x the others, a quarter of the frames.
 constexpr size_t kSpreadSizingFrom = 4096;
+// A batch remesh puts the mesh in space order after an iteration that appended more than one
+// new face slot per this many live faces (remesh()).
+constexpr size_t kNewSlotsToSort = 4;
 }  // namespace
 
 double bounding_box_diagonal(const SurfaceMesh& mesh) { return geometry::bounding_box_diagonal(mesh); }
@@ -305,6 +308,36 @@ void Remesher::watch_region_iterations(RegionWatch watch) { impl_->region_watch 
 
 void Remesher::keep_guard_grid() { impl_->keep_guard_grid = true; }
 
+Remesher::Tidied Remesher::tidy_between_iterations(size_t& ordered_slots) {
+  SurfaceMesh& mesh = impl_->mesh;
+  // Splits append their elements at the end of the arrays, so after a pass that refines much
+  // of the mesh (most first iterations) a fan's vertices, edges and faces lie far apart in
+  // memory and every walk around a fan misses the cache. The next passes read the mesh in
+  // space order instead: cgal/armadillo.off at epsilon 0.01 % / min length 0.02 % (100k ->
+  // 146k vertices) took 14.2 s of CPU and 317 MB, now 8.4 s and 283 MB.
+  if (mesh.faces_size() > ordered_slots + mesh.n_faces() / kNewSlotsToSort) {
+    impl_->crossing_guard.stop();  // (its grid names faces by their old slots)
+    mesh.sort_in_space();
+    ordered_slots = mesh.faces_size();
+    return Tidied::kSorted;
+  }
+  // Collapses only mark elements deleted and splits append new ones, so without compaction the
+  // slots pile up over the iterations: cheese.off at --uniform --length 1% held 594k face slots
+  // for 113k live faces, and every per-slot array (the mesh's, the passes' scratch, the crossing
+  // guard's grid) was sized to the slots. Compacting (or sorting) here is safe: a batch remesher
+  // has no mirror map and no face log, the only handles into the mesh that outlive an
+  // iteration, and its per-element state lives in mesh properties, which follow. Only once the
+  // deleted slots outnumber the live ones: compaction reorders the elements, and with them the
+  // order the passes visit them in, which changes the result a little. (The kept grid sees the
+  // new slot count and is built again, CrossingGuard::resume.)
+  if (mesh.faces_size() > 2 * mesh.n_faces()) {
+    mesh.garbage_collection();
+    ordered_slots = mesh.faces_size();
+    return Tidied::kCompacted;
+  }
+  return Tidied::kNothing;
+}
+
 bool Remesher::sizing_due() const { return impl_->region_calls_since_sizing == 0 && !impl_->sizing_spread; }
 
 size_t Remesher::polish() {
@@ -329,17 +362,10 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
   {
     Remesher remesher(mesh, options);
     remesher.keep_guard_grid();  // nothing else edits the mesh here (but the compaction, allowed)
+    size_t ordered_slots = mesh.faces_size();
     for (int i = 0; i < options.iterations; ++i) {
       remesher.iterate(/*pins_move_only=*/i + 2 >= options.iterations);
-      // Collapses only mark elements deleted and splits append new ones, so without compaction
-      // the slots pile up over the iterations: cheese.off at --uniform --length 1% held 594k
-      // face slots for 113k live faces, and every per-slot array (the mesh's, the passes'
-      // scratch, the crossing guard's grid) was sized to the slots. Compacting here is safe: a
-      // batch remesher has no mirror map and no face log, the only handles into the mesh that
-      // outlive an iteration, and its per-element state lives in mesh properties, which follow.
-      // Only once the deleted slots outnumber the live ones: compaction reorders the elements,
-      // and with them the order the passes visit them in, which changes the result a little.
-      if (mesh.faces_size() > 2 * mesh.n_faces()) mesh.garbage_collection();
+      remesher.tidy_between_iterations(ordered_slots);
     }
     remesher.polish();
     report = remesher.report();

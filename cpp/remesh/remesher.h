@@ -174,6 +174,12 @@ class Remesher {
   // pass that refines wholesale, see run_iteration). Not for sessions: a stroke's edits would
   // leave the grid out of date.
   void keep_guard_grid();
+  // Batch use, between two iterate() calls: puts the mesh in space order after an iteration
+  // that appended many elements, or compacts it when deleted slots pile up (the kept grid follows
+  // either). `ordered_slots`: the caller's record of the mesh's face slots when it was last in
+  // order, the mesh's faces_size() before the first call.
+  enum class Tidied { kNothing, kSorted, kCompacted };
+  Tidied tidy_between_iterations(size_t& ordered_slots);
   // Estimate and budget since the reference was built, warning of the last whole-mesh iteration.
   const RemeshReport& report() const;
   const RemeshOptions& options() const;

@@ -222,7 +222,8 @@ TEST(CrossingGuard, ResumedGridFollowsAGarbageCollection) {
 // remesh() keeps one grid through its iterations (Remesher::keep_guard_grid); a remesher that
 // builds the grid afresh for each pass, as a session's does, must reach the very same mesh: the
 // guard's answers depend on the geometry only. Coarse uniform lengths on fandisk make the
-// collapses pile up deleted slots, so remesh() compacts the mesh between its iterations.
+// collapses pile up deleted slots, so remesh() compacts the mesh between its iterations; at the
+// defaults the first iteration's splits append enough to put the mesh in space order.
 TEST(CrossingGuard, KeptGridRemeshesAsAFreshGridDoes) {
   const SurfaceMesh input = io::load_mesh(std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/fandisk.off");
   const double diagonal = remesh::bounding_box_diagonal(input);
@@ -232,17 +233,23 @@ TEST(CrossingGuard, KeptGridRemeshesAsAFreshGridDoes) {
     if (length > 0) o.adaptive = false, o.target_length = length * diagonal;
     SurfaceMesh kept = input, fresh = input;
     remesh::remesh(kept, o);
-    bool compacted = false;
+    bool compacted = false, sorted = false;
     {
       remesh::Remesher remesher(fresh, o);
+      size_t ordered_slots = fresh.faces_size();
       for (int i = 0; i < o.iterations; ++i) {
         remesher.iterate(/*pins_move_only=*/i + 2 >= o.iterations);  // as remesh() does
-        if (fresh.faces_size() > 2 * fresh.n_faces()) fresh.garbage_collection(), compacted = true;
+        const auto tidied = remesher.tidy_between_iterations(ordered_slots);
+        compacted |= tidied == remesh::Remesher::Tidied::kCompacted;
+        sorted |= tidied == remesh::Remesher::Tidied::kSorted;
       }
       remesher.polish();
     }
     fresh.garbage_collection();
+    // Both ways a kept grid must follow: the defaults refine fandisk (sorted in space after the
+    // first iteration), the coarse length coarsens it (compacted).
     EXPECT_EQ(compacted, length > 0);
+    EXPECT_EQ(sorted, length == 0);
     ASSERT_EQ(kept.n_faces(), fresh.n_faces());
     EXPECT_EQ(kept.positions(), fresh.positions());
     for (Face f : kept.faces()) {
