@@ -314,7 +314,8 @@ Remesher::Tidied Remesher::tidy_between_iterations(size_t& ordered_slots) {
   // of the mesh (most first iterations) a fan's vertices, edges and faces lie far apart in
   // memory and every walk around a fan misses the cache. The next passes read the mesh in
   // space order instead: cgal/armadillo.off at epsilon 0.01 % / min length 0.02 % (100k ->
-  // 146k vertices) took 14.2 s of CPU and 317 MB, now 8.4 s and 283 MB.
+  // 146k vertices) took 11.1 s of CPU and 317 MB, now 8.0 s and 283 MB (a busy machine; CGAL's
+  // ChineseDragon-10kv, bull and cheese gain 19-30 % too, docs/figures.md).
   if (mesh.faces_size() > ordered_slots + mesh.n_faces() / kNewSlotsToSort) {
     impl_->crossing_guard.stop();  // (its grid names faces by their old slots)
     mesh.sort_in_space();
