@@ -217,3 +217,17 @@ TEST(RemeshFidelity, CleanupOfCapsAlongASharpEdgeKeepsTheEdge) {
     EXPECT_NO_THROW(r.mesh.validate());
   }
 }
+
+// Caps of a tenth of a degree along the box's edges: the coverage check sampled a sharp edge
+// only where the triangles on both sides were wide enough for a remeshed triangle to cut it
+// deeply, and a cap's height said it was not (before: 0.79 % of the diagonal at epsilon 0.05 %).
+// The flat face beyond the cap counts.
+TEST(RemeshFidelity, SharpEdgeUnderThinCapsIsCovered) {
+  const SurfaceMesh input = box_with_capped_faces(0.002);
+  for (const double epsilon : {0.0005, 0.002}) {
+    SCOPED_TRACE(testing::Message() << "epsilon " << epsilon);
+    const Remeshed r = remeshed(input, epsilon, 0.002);
+    EXPECT_LE(r.hausdorff_rel, 2 * std::max(epsilon, 0.001));
+    EXPECT_NO_THROW(r.mesh.validate());
+  }
+}
