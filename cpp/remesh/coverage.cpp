@@ -176,11 +176,15 @@ void Remesher::Impl::sample_reference_creases() {
       const Vec3 n1 = glm::cross(pts[u[1]] - pts[u[0]], pts[u[2]] - pts[u[0]]);
       const double length = glm::length(pts[b] - pts[a]), l0 = glm::length(n0), l1 = glm::length(n1);
       if (!(length > 0 && l0 > 0 && l1 > 0)) continue;
-      // |n| is twice the face's area: over the edge's length, its height; for a cap along the
-      // crease, the flat face beyond it (flat_width).
-      const double width = std::min(flat_width(ti, i, l0 / length), flat_width(other, edge_to(other, ti), l1 / length));
       const double sin_half = std::sqrt(std::max(0.0, 0.5 * (1 - glm::dot(n0, n1) / (l0 * l1))));
-      const double reach = std::min(width, kSplitFactor * std::max(ref_sizing[a], ref_sizing[b]));
+      const double cap = kSplitFactor * std::max(ref_sizing[a], ref_sizing[b]);
+      if (!(cap * sin_half > limit)) continue;  // (most edges of a smooth part: no width matters)
+      // |n| is twice the face's area: over the edge's length, its height; for a cap along the
+      // crease, the flat face beyond it (flat_width, only where the heights alone say no).
+      double width = std::min(l0, l1) / length;
+      if (!(width * sin_half > limit))
+        width = std::min(flat_width(ti, i, l0 / length), flat_width(other, edge_to(other, ti), l1 / length));
+      const double reach = std::min(width, cap);
       if (!(reach * sin_half > limit)) continue;
       const double spacing =
           std::max(kSampleSpacingLimits * limit, kSampleSpacingSizings * std::min(ref_sizing[a], ref_sizing[b]));
