@@ -131,11 +131,6 @@ void Remesher::Impl::sample_reference_creases() {
   };
   std::vector<Crease> creases;
   size_t total = 0;
-  auto unit_normal = [&](std::uint32_t t) {
-    const Vec3 n = glm::cross(pts[tris[t][1]] - pts[tris[t][0]], pts[tris[t][2]] - pts[tris[t][0]]);
-    const double l = glm::length(n);
-    return l > 0 ? n / l : Vec3(0.0);
-  };
   // Which of t's edges leads to its neighbour u.
   auto edge_to = [&](std::uint32_t t, std::uint32_t u) {
     for (int k = 0; k < 3; ++k)
@@ -151,11 +146,11 @@ void Remesher::Impl::sample_reference_creases() {
     const Point& a = pts[tris[t][k]];
     const Vec3 along = pts[tris[t][(k + 1) % 3]] - a;
     const double along2 = glm::dot(along, along);
-    const Vec3 n = unit_normal(t);
+    const Vec3& n = ref_normal[t];  // (build_reference_normals)
     double width = height;
     for (int side = 1; side <= 2; ++side) {
       const std::uint32_t u = ref_adjacent[t][(k + side) % 3];
-      if (u == UINT32_MAX || !(glm::dot(unit_normal(u), n) > kFlatCos)) continue;
+      if (u == UINT32_MAX || !(glm::dot(ref_normal[u], n) > kFlatCos)) continue;
       for (std::uint32_t c : tris[u]) {
         const Vec3 d = pts[c] - a;
         const Vec3 off = d - along * (glm::dot(d, along) / along2);
