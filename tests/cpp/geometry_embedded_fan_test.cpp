@@ -12,13 +12,14 @@
 
 #include "geometry/embedded_fan.h"
 #include "geometry/self_intersections.h"
+#include "geometry_test_util.h"
 #include "mesh/build_from_triangles.h"
 
 using namespace adasculpt;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // Whether two triangles of the closed fan (centre, ring[i], ring[i + 1]) cross, by the exact
 // pair test with the fan's connectivity (the centre is vertex id k, ring[i] is id i).

@@ -14,6 +14,21 @@
 
 namespace adasculpt::test {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
+// Counts and the bits of every live position: what undo/redo must restore exactly.
+inline uint64_t fingerprint(const mesh::SurfaceMesh& m) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  auto mix = [&h](const void* p, size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  const uint64_t counts[3] = {m.n_vertices(), m.n_edges(), m.n_faces()};
+  mix(counts, sizeof counts);
+  for (mesh::Vertex v : m.vertices()) mix(&m.position(v), sizeof(Point));
+  return h;
+}
+
 // The vertex with the largest z (the grab tests pick the sphere's top there).
 inline Point highest_point(const mesh::SurfaceMesh& m) {
   Point best(0, 0, -1e300);

@@ -13,7 +13,7 @@ using namespace adasculpt;
 using namespace adasculpt::geometry;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 double deg(double rad) { return rad * 180.0 / kPi; }
 }  // namespace
 

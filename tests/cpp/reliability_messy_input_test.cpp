@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/topology.h"
+#include "geometry_test_util.h"
 #include "io/load_mesh.h"
 #include "io/mesh_io.h"
 #include "mesh/primitives.h"
@@ -91,17 +92,6 @@ bool finite(const mesh::SurfaceMesh& m) {
   return true;
 }
 
-uint64_t fingerprint(const mesh::SurfaceMesh& m) {
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* p, size_t n) {
-    for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<const unsigned char*>(p)[i]) * 1099511628211ull;
-  };
-  const uint64_t counts[2] = {m.n_vertices(), m.n_faces()};
-  mix(counts, sizeof counts);
-  for (mesh::Vertex v : m.vertices()) mix(&m.position(v), sizeof(Point));
-  return h;
-}
-
 enum class Expect { Works, Refused, Either };
 
 struct Result {
@@ -139,7 +129,7 @@ Result exercise(const std::string& name, const std::vector<uint8_t>& bytes) {
     EXPECT_EQ(geometry::boundary_loops(m), loops) << "boundary loops changed";
   };
   check("load");
-  const uint64_t loaded = fingerprint(m);
+  const uint64_t loaded = test::fingerprint(m);
   try {
     s.remesh(2);
     check("remesh");
@@ -162,7 +152,7 @@ Result exercise(const std::string& name, const std::vector<uint8_t>& bytes) {
     check("grab");
     EXPECT_TRUE(s.undo());
     EXPECT_TRUE(s.undo());
-    EXPECT_EQ(fingerprint(s.mesh()), loaded) << name << ": undo did not restore the loaded mesh";
+    EXPECT_EQ(test::fingerprint(s.mesh()), loaded) << name << ": undo did not restore the loaded mesh";
   } catch (const std::exception& e) {
     ADD_FAILURE() << name << ": accepted at load but then threw: " << e.what();
   }

@@ -51,6 +51,7 @@
 
 #include "deform/brushes.h"
 #include "geometry/topology.h"
+#include "geometry_test_util.h"
 #include "mesh/primitives.h"
 #include "sculpt/brush.h"
 #include "sculpt/session.h"
@@ -99,19 +100,6 @@ std::string resolve_mesh(const std::string& name) {
   const fs::path in_repo = fs::path(ADASCULPT_SOURCE_DIR) / name;
   if (fs::exists(in_repo)) return in_repo.string();
   return (fs::path(ADASCULPT_SHARED_MESHES_DIR) / name).string();
-}
-
-// Counts and the bits of every live position: what undo/redo must restore exactly.
-uint64_t fingerprint(const mesh::SurfaceMesh& m) {
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* p, size_t n) {
-    const unsigned char* b = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-  };
-  const uint64_t counts[3] = {m.n_vertices(), m.n_edges(), m.n_faces()};
-  mix(counts, sizeof counts);
-  for (mesh::Vertex v : m.vertices()) mix(&m.position(v), sizeof(Point));
-  return h;
 }
 
 bool all_finite(const mesh::SurfaceMesh& m) {
@@ -217,7 +205,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         if (mode == 2 || mode == 3) g.scale = uni(0.7, 1.4);
         g.substeps = 1 + pick(6);
         log_step(sculpt::SessionStep::Kind::Grab, [&](sculpt::SessionStep& st) { st.grab = g; });
-        const uint64_t before = fingerprint(s.mesh());
+        const uint64_t before = test::fingerprint(s.mesh());
         s.grab_begin(g.center, g.handle_radius, g.roi_radius);
         for (int i = 1; i <= g.substeps; ++i) {
           s.grab_drag(g.total_at(double(i) / g.substeps));
@@ -298,7 +286,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
           }
         }
         log_step(sculpt::SessionStep::Kind::Brush, [&](sculpt::SessionStep& st) { st.brush = b; });
-        const uint64_t before = fingerprint(s.mesh());
+        const uint64_t before = test::fingerprint(s.mesh());
         s.brush_begin(bs);
         for (size_t i = 0; i < b.path.size(); ++i) {
           try {
@@ -325,7 +313,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
       } else if (kind < 80) {  // whole-mesh remesh
         const int it = 1 + pick(2);
         log["steps"].push_back({{"remesh", {{"iterations", it}}}});
-        const uint64_t before = fingerprint(s.mesh());
+        const uint64_t before = test::fingerprint(s.mesh());
         s.remesh(it);
         push_model(before);
         ++totals.remeshes;
@@ -336,7 +324,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
         for (int i = 0; i < n; ++i) {
           std::deque<uint64_t>& from = undo ? undo_model : redo_model;
           std::deque<uint64_t>& to = undo ? redo_model : undo_model;
-          const uint64_t now = fingerprint(s.mesh());
+          const uint64_t now = test::fingerprint(s.mesh());
           const bool did = undo ? s.undo() : s.redo();
           if (did != !from.empty()) {
             ADD_FAILURE() << fail_here(step, std::string(undo ? "undo" : "redo") + " returned " + (did ? "true" : "false") +
@@ -344,7 +332,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
             return;
           }
           if (!did) break;
-          if (fingerprint(s.mesh()) != from.back()) {
+          if (test::fingerprint(s.mesh()) != from.back()) {
             ADD_FAILURE() << fail_here(step, std::string(undo ? "undo" : "redo") + " did not restore the exact mesh");
             return;
           }
@@ -432,7 +420,7 @@ void soak_one(const std::string& name, long steps, long check_every, uint32_t se
   // kMaxUndoSteps steps, the oldest dropped first. What is kept must be the newest ones, exact.
   ASSERT_LE(back, undo_model.size()) << label;
   if (back > 0) {
-    EXPECT_EQ(fingerprint(s.mesh()), undo_model[undo_model.size() - back]) << label << ": oldest kept snapshot";
+    EXPECT_EQ(test::fingerprint(s.mesh()), undo_model[undo_model.size() - back]) << label << ": oldest kept snapshot";
   }
   size_t forward = 0;
   while (s.redo()) ++forward;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geometry/self_intersections.h"
+#include "geometry_test_util.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/crossing_guard.h"
 
@@ -22,7 +23,7 @@ using mesh::Vertex;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // A hexagonal fan around vertex 0 with ring vertex 1 lowered to z = -0.6, and a small separate
 // triangle (vertices 7-9) at z = -0.15 under the far half of the fan: collapsing 0 into 1 tilts

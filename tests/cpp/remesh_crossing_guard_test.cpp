@@ -19,6 +19,7 @@
 #include "geometry/face_grid.h"
 #include "geometry/self_intersections.h"
 #include "geometry/triangle.h"
+#include "geometry_test_util.h"
 #include "io/load_mesh.h"
 #include "mesh/build_from_triangles.h"
 #include "remesh/crossing_guard.h"
@@ -36,7 +37,7 @@ namespace {
 
 using test::roof;
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // A hexagonal fan at z = 0 around vertex 0 at the origin; ring vertex 1 at (1, 0) is lowered to
 // z = -0.6. With `obstacle`, a separate small triangle at z = -0.15 under the far half of the

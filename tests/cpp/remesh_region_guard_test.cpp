@@ -16,6 +16,7 @@
 #include "mesh/build_from_triangles.h"
 #include "remesh/remesher.h"
 #include "sculpt/brush.h"
+#include "test_build.h"
 
 using namespace adasculpt;
 
@@ -90,7 +91,8 @@ RegionCrossings harsh_strokes(bool guard) {
     for (const Point& p : path) stroker.sample(mesh, remesher, p, 1, frame);
     remesher.reset_slots(frame.touched);  // a stroke ends, as the session ends it
   };
-  for (int round = 0; round < 4; ++round) {
+  const int rounds = test::operations_for_this_build(4, 2);  // ASan: 2
+  for (int round = 0; round < rounds; ++round) {
     stroke(deform::BrushTool::Pinch, ear_path, 0.012, false);
     stroke(deform::BrushTool::Crease, ear_path, 0.012, false);
     stroke(deform::BrushTool::Draw, draw_path, 0.008, round % 2 == 1);

@@ -79,7 +79,7 @@ SurfaceMesh notched_plate() {
   return mesh::build_from_triangles(points, triangles);
 }
 
-remesh::RemeshOptions adaptive(const SurfaceMesh& m, double epsilon_pct, double features) {
+remesh::RemeshOptions adaptive_with_features(const SurfaceMesh& m, double epsilon_pct, double features) {
   remesh::RemeshOptions o = remesh::default_options_for(m);
   const double d = remesh::bounding_box_diagonal(m);
   o.epsilon = epsilon_pct * 0.01 * d;
@@ -96,7 +96,7 @@ TEST(RemeshStrips, RingBetweenTwoFeatureLinesGetsTrianglesThatFitIt) {
   for (const double epsilon_pct : {0.05, 0.5, 2.0}) {
     SCOPED_TRACE("epsilon " + std::to_string(epsilon_pct) + " %");
     SurfaceMesh m = input;
-    const remesh::RemeshReport r = remesh::remesh(m, adaptive(input, epsilon_pct, 45));
+    const remesh::RemeshReport r = remesh::remesh(m, adaptive_with_features(input, epsilon_pct, 45));
     ASSERT_NO_THROW(m.validate());
     EXPECT_TRUE(r.warning.empty()) << r.warning;
     EXPECT_LE(double(m.n_vertices()), 2.0 * r.estimated_vertices + 1000);
@@ -111,7 +111,7 @@ TEST(RemeshStrips, RingTheToleranceMayCutAcrossIsNotRefined) {
   // refined to its width regardless, 2,996).
   const SurfaceMesh input = stepped_cylinder(0.02);
   SurfaceMesh m = input;
-  remesh::remesh(m, adaptive(input, 0.5, 0));
+  remesh::remesh(m, adaptive_with_features(input, 0.5, 0));
   EXPECT_LE(m.n_vertices(), 1200u);
   EXPECT_GE(geometry::quality_report(m).min_angle_deg, 20.0);
 }
@@ -124,7 +124,7 @@ TEST(RemeshStrips, ShortBorderEdgeBetweenCornersGetsTrianglesThatFitIt) {
   for (const double epsilon_pct : {0.5, 2.0}) {
     SCOPED_TRACE("epsilon " + std::to_string(epsilon_pct) + " %");
     SurfaceMesh m = input;
-    const remesh::RemeshReport r = remesh::remesh(m, adaptive(input, epsilon_pct, 0));
+    const remesh::RemeshReport r = remesh::remesh(m, adaptive_with_features(input, epsilon_pct, 0));
     ASSERT_NO_THROW(m.validate());
     EXPECT_TRUE(r.warning.empty()) << r.warning;
     EXPECT_GE(geometry::quality_report(m).min_angle_deg, 20.0);

@@ -16,6 +16,7 @@
 #include "kept_remesher_test_util.h"
 #include "mesh/primitives.h"
 #include "sculpt/session.h"
+#include "test_build.h"
 #include "undo_test_util.h"
 
 using namespace adasculpt;
@@ -93,7 +94,7 @@ bool run(sculpt::Session& s, const Step& step) {
 }  // namespace
 
 TEST(SculptKeptRemesher, RandomStrokesGrabsUndoAndRedoKeepItAsNew) {
-  constexpr int kSequences = 300, kSteps = 12;
+  const int kSequences = test::operations_for_this_build(300), kSteps = 12;  // ASan: 75 sequences
   int compared = 0;
   for (int seq = 0; seq < kSequences; ++seq) {
     BoxSculptor r(1000 + seq);
