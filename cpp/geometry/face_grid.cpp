@@ -19,6 +19,10 @@ constexpr double kStaleFactor = 2;
 // No more cells than this along an axis of the mesh's box: a coarse mesh with a few tiny faces
 // would otherwise put its large faces into millions of cells.
 constexpr double kMaxCellsPerAxis = 1024;
+// Overflow entries walked by queries, in multiples of a fresh build's entries, before insert() rebuilds (a build
+// reads each entry about twice). On a CAD part refined along its creases the lists there grew to hundreds of
+// entries a query, most of them stale: the walks were a quarter of the remesh.
+constexpr size_t kWalkFactor = 4;
 // See insert(): inserts per measurement of the new faces' spans, and the mean span allowed.
 constexpr size_t kSpanWindow = 256;
 constexpr size_t kMaxMeanSpan = 3;
@@ -180,6 +184,7 @@ void FaceGrid::fill(const mesh::SurfaceMesh& mesh, double cell_size, const Point
   if (seen_.size() < mesh.faces_size()) seen_.resize(mesh.faces_size(), 0u);
   rebuild_at_ = static_cast<size_t>(kStaleFactor * static_cast<double>(std::max<size_t>(entries_.size(), 1024)));
   span_sum_ = inserts_ = 0;
+  overflow_walked_ = 0;
   built_ = true;
 }
 
@@ -192,7 +197,7 @@ FaceGrid::Placed* FaceGrid::placed_of(mesh::Face f) {
 
 void FaceGrid::insert(const mesh::SurfaceMesh& mesh, mesh::Face f) {
   if (!built_) return;
-  if (overflow_.size() > rebuild_at_ && !listed_) {
+  if ((overflow_.size() > rebuild_at_ || overflow_walked_ > kWalkFactor * entries_.size()) && !listed_) {
     build(mesh, cell_size_);
     return;
   }
@@ -265,7 +270,10 @@ bool FaceGrid::gather(const Point& lo, const Point& hi, std::vector<mesh::Face>&
   };
   for_each_bucket(r, [&](std::uint32_t b) {
     for (std::uint32_t e = start_[b]; e < start_[b + 1] && within; ++e) take(entries_[e]);
-    for (std::uint32_t e = overflow_head_[b]; e != kNone && within; e = overflow_[e].next) take(overflow_[e]);
+    for (std::uint32_t e = overflow_head_[b]; e != kNone && within; e = overflow_[e].next) {
+      ++overflow_walked_;
+      take(overflow_[e]);
+    }
   });
   return within;
 }

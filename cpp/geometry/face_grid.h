@@ -135,6 +135,9 @@ class FaceGrid {
   double cell_size_ = 1, inv_cell_ = 1;
   std::uint32_t mask_ = 0;
   size_t rebuild_at_ = 0;  // overflow entries beyond which insert() rebuilds
+  // Overflow entries the queries walked since the last build: inserts pile up where the remesher works, and a
+  // query there walks those buckets' lists; insert() rebuilds once the walking has cost a few builds.
+  size_t overflow_walked_ = 0;
   // Cells a new box spans along its longest axis, summed over recent inserts (see insert()).
   size_t span_sum_ = 0, inserts_ = 0;
   // The build's entries, bucket by bucket (bucket b: entries_[start_[b]] to entries_[start_[b + 1]]):

@@ -263,12 +263,11 @@ TEST(CrossingGuard, KeptGridRemeshesAsAFreshGridDoes) {
   }
 }
 
-// The grid finds a face at its new place after an insert (its entry at the old place is stale
-// and harmless), and the sweep over its cells visits every pair of touching boxes.
-TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
+namespace {
+// A wavy kN x kN grid of points in the unit squares, two triangles per square.
+SurfaceMesh wavy_sheet(std::uint32_t kN) {
   Points p;
   Triangles t;
-  constexpr std::uint32_t kN = 12;  // a wavy kN x kN grid of points, two triangles per square
   for (std::uint32_t i = 0; i < kN; ++i)
     for (std::uint32_t j = 0; j < kN; ++j) p.push_back({double(i), double(j), 0.3 * std::sin(0.9 * i + 0.4 * j)});
   for (std::uint32_t i = 0; i + 1 < kN; ++i)
@@ -277,20 +276,29 @@ TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
       t.push_back({a, a + kN, a + kN + 1});
       t.push_back({a, a + kN + 1, a + 1});
     }
-  SurfaceMesh m = mesh::build_from_triangles(p, t);
+  return mesh::build_from_triangles(p, t);
+}
+std::array<Point, 2> face_box(const SurfaceMesh& m, Face f) {
+  Vertex v[3];
+  m.face_vertices(f, v);
+  std::array<Point, 2> b = {m.position(v[0]), m.position(v[0])};
+  for (Vertex w : v) b[0] = glm::min(b[0], m.position(w)), b[1] = glm::max(b[1], m.position(w));
+  return b;
+}
+bool boxes_touch(const std::array<Point, 2>& a, const std::array<Point, 2>& b) {
+  return !(a[1].x < b[0].x || b[1].x < a[0].x || a[1].y < b[0].y || b[1].y < a[0].y || a[1].z < b[0].z ||
+           b[1].z < a[0].z);
+}
+}  // namespace
+
+// The grid finds a face at its new place after an insert (its entry at the old place is stale
+// and harmless), and the sweep over its cells visits every pair of touching boxes.
+TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
+  SurfaceMesh m = wavy_sheet(12);
   geometry::FaceGrid grid;
   grid.build(m, 1.0);
-  auto box = [&](Face f) {
-    Vertex v[3];
-    m.face_vertices(f, v);
-    std::array<Point, 2> b = {m.position(v[0]), m.position(v[0])};
-    for (Vertex w : v) b[0] = glm::min(b[0], m.position(w)), b[1] = glm::max(b[1], m.position(w));
-    return b;
-  };
-  auto touch = [](const std::array<Point, 2>& a, const std::array<Point, 2>& b) {
-    return !(a[1].x < b[0].x || b[1].x < a[0].x || a[1].y < b[0].y || b[1].y < a[0].y || a[1].z < b[0].z ||
-             b[1].z < a[0].z);
-  };
+  auto box = [&](Face f) { return face_box(m, f); };
+  auto touch = boxes_touch;
   std::vector<std::vector<bool>> visited(m.faces_size(), std::vector<bool>(m.faces_size(), false));
   size_t budget = 1000000;
   EXPECT_TRUE(grid.for_each_overlapping_pair(budget, [&](Face f, Face g) {
@@ -321,6 +329,44 @@ TEST(FaceGrid, FindsMovedFacesAndEveryTouchingPair) {
   std::sort(found.begin(), found.end());
   std::sort(fan.begin(), fan.end());
   EXPECT_EQ(found, fan);
+}
+
+// Inserts pile up where the remesher works, and every query there walks those cells' overflow lists (on a CAD
+// part refined along its creases, hundreds of mostly stale entries a query: a quarter of the remesh). Once the
+// queries have walked a few builds' worth, the next insert rebuilds, and the queries still find every face.
+TEST(FaceGrid, QueriesThatWalkLongInsertListsRebuildTheGrid) {
+  SurfaceMesh m = wavy_sheet(12);
+  geometry::FaceGrid grid;
+  grid.build(m, 1.0);
+  const Vertex v(5 * 12 + 5);
+  const Point home = m.position(v);
+  // Back and forth across a cell border, 40 times: the fan's new boxes go to the overflow lists (fewer
+  // entries than the stale-entry limit of insert(), so that alone does not rebuild).
+  for (int k = 0; k < 40; ++k) {
+    m.position(v) = home + Point(k % 2 ? 0.6 : -0.6, 0, 0);
+    grid.insert_fan(m, v);
+  }
+  m.position(v) = home;
+  grid.insert_fan(m, v);
+  ASSERT_TRUE(grid.overflowed());
+  const Point lo = home - Point(0.5), hi = home + Point(0.5);
+  std::vector<Face> expected;
+  for (Face f : m.faces())
+    if (boxes_touch(face_box(m, f), {lo, hi})) expected.push_back(f);
+  auto gather_sorted = [&] {
+    std::vector<Face> found;
+    size_t budget = 1000000;
+    EXPECT_TRUE(grid.gather(lo, hi, found, budget));
+    std::vector<Face> current;  // the faces whose current box touches (stale entries may add others)
+    for (Face f : found)
+      if (boxes_touch(face_box(m, f), {lo, hi})) current.push_back(f);
+    std::sort(current.begin(), current.end());
+    return current;
+  };
+  for (int k = 0; k < 100; ++k) ASSERT_EQ(gather_sorted(), expected);
+  grid.insert_fan(m, v);  // the fan did not move: only the walking asks for the rebuild
+  EXPECT_FALSE(grid.overflowed());
+  EXPECT_EQ(gather_sorted(), expected);
 }
 
 // The guard clears the faces that share a corner with a collapse's new triangles by whole fans
