@@ -486,10 +486,12 @@ SAMPLE_MESHES = ["repo/eight.off", "repo/fandisk.off", "gen/fan_bar.off", "gen/t
 # midpoint 3 tolerances off a crease (1.5 x), cpp/remesh/split_collapse.cpp split_with_mirror. Min angle: the
 # cut cone of mask_cone kept a flat triangle at its apex (0.00°; a collapse made it, and its long side is the
 # border: split_collapse.cpp collapse_geometry_ok, flip_relax.cpp fix_bad_faces), blobby_3cc a 16° triangle
-# on a short border edge (angle_collapse.cpp).
+# on a short border edge (angle_collapse.cpp), pig three triangles of 0.00° where an input flap folded back onto
+# its neighbour made two feature lines on one line (degenerate.cpp collapse_flat_across_features).
 SAMPLE_RUNS = [("gen/sliver_cylinder.off", "eps0.05-min0.02-f0"), ("cgal/3torus.off", "eps0.01-min0.02-f45"),
                ("gen/thin_plate.off", "eps0.2-min0.02-f0"), ("cgal/part.off", "eps0.05-min0.2-f0"),
-               ("cgal/mask_cone.off", "eps0.5-min0.2-f0"), ("cgal/blobby_3cc.off", "eps2-min0.2-f0")]
+               ("cgal/mask_cone.off", "eps0.5-min0.2-f0"), ("cgal/blobby_3cc.off", "eps2-min0.2-f0"),
+               ("cgal/pig.off", "eps1-min0.2-f45")]
 
 
 # Misses of the generated and sample meshes the remesher is known not to meet yet (issue 17 item 2, geometric

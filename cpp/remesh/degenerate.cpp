@@ -19,6 +19,9 @@
 // parts, boundaries) stays, and is not multiplied: the walk over the reference crosses the gap
 // it leaves (reference.cpp), and the curvature there is not measured (geometry/curvature.cpp).
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -36,6 +39,9 @@ constexpr double kNeedleRatio2 = 1e-12;
 // whose neighbour a flip of this pass made repairable. A strip of n collinear triangles takes
 // about log2(n) passes; this is only the bound that makes the work finite whatever the input.
 constexpr int kMaxPasses = 64;
+// collapse_flat_across_features in uniform remeshing: the longest edge it collapses, as a share of the
+// target length (the surface moves by at most that much).
+constexpr double kFlatCollapseLengthShare = 0.25;
 }  // namespace
 
 bool Remesher::Impl::is_zero_area(mesh::Face f) const {
@@ -125,6 +131,56 @@ size_t Remesher::Impl::remove_degenerate_faces() {
     if (this_pass == 0) break;
   }
   return repaired;
+}
+
+// polish()'s last repair of a triangle under a degree that the sliver repair (fix_bad_faces) could
+// not remove because of the feature lines around it. On scans remeshed with --features 45, a flap
+// of the input folded back onto its neighbour (dihedral angles near 180 degrees) makes two feature
+// lines that run on top of each other; the remesher lays both on one line, and the strip of
+// triangles between them has no area (cgal/pig.off at epsilon 1 %, features 45: three triangles of
+// 0.00 degrees between two corners). Every other repair keeps feature lines apart and corners in
+// place, so none applies there. This one collapses an edge of the triangle across those rules,
+// the shortest edge first and a vertex that is not a corner first, where the link condition holds,
+// no triangle around it turns over or goes under a degree, nothing crosses (the guard) and the
+// surface stays near the reference. At worst it merges two feature lines, which the output (a
+// triangle mesh without feature marks) does not show; the survivor's class is counted again.
+// A collapse moves the surface by at most the length of its edge. Adaptive, collapse_keeps_fidelity
+// holds it to the tolerance of the reference (one, not the sliver repair's four: the triangle it
+// removes is no sliver to trade against, and 4 tolerances took cgal/3torus.off at epsilon 0.01 %,
+// features 45, from a Hausdorff distance of 0.011 % to 0.040 %, twice the bound); uniform remeshing has no tolerance
+// (its bound is the target length), so the edge must be shorter than kFlatCollapseLengthShare of it.
+// Not repaired: a strip of many flat triangles in a row (uniform lengths split the doubled line
+// into one), where every collapse leaves a flat triangle that the guard refuses to create.
+bool Remesher::Impl::collapse_flat_across_features(const Halfedge sides[3]) {
+  if (mirror_axis >= 0) return false;  // a repair on one side only would break the symmetry
+  if (opt.adaptive && !(fidelity_tolerance() > 0)) return false;  // no current reference to measure against
+  const double max_length =
+      opt.adaptive ? std::numeric_limits<double>::infinity() : kFlatCollapseLengthShare * opt.target_length;
+  std::array<std::pair<double, Halfedge>, 3> by_length;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 d = mesh.position(mesh.to_vertex(sides[i])) - mesh.position(mesh.from_vertex(sides[i]));
+    by_length[i] = {glm::dot(d, d), sides[i]};
+  }
+  std::sort(by_length.begin(), by_length.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const bool move_corner : {false, true})
+    for (const auto& side : by_length)
+      for (const Halfedge h : {side.second, mesh.opposite(side.second)}) {
+        const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+        if ((vclass[v0] == kCorner) != move_corner) continue;
+        if (scope[v0] != kActive || scope[v1] == kOutside || anchored(v0) || masked(v0)) continue;
+        const Point target = mesh.position(v1);
+        if (side.first > max_length * max_length || !mesh.is_collapse_ok(h) ||
+            !collapse_geometry_ok(h, target, false, /*check_lengths=*/false, 0.5, /*check_reference_lines=*/false) ||
+            collapse_crosses(h, target, false) || !collapse_keeps_fidelity(h, target, false))
+          continue;
+        apply_collapse(h, false);
+        int features = 0;
+        for (const Halfedge out : mesh.halfedges(v1)) features += is_feature(mesh.edge(out));
+        vclass[v1] = vertex_class(features);
+        return true;
+      }
+  return false;
 }
 
 }  // namespace adasculpt::remesh

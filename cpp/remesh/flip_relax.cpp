@@ -433,6 +433,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       // A flat cap on the border at a vertex with no other triangle: removed exactly (degenerate.cpp).
       if (!done && mirror_axis < 0 && mesh.is_boundary(mesh.edge(hs[longest])) && is_zero_area(f))
         done = remove_border_ear(hs[longest]);
+      if (!done && merge_flat_across_features) done = collapse_flat_across_features(hs);
       fixed_this_pass += done;
     }
     fixed += fixed_this_pass;

@@ -352,7 +352,11 @@ size_t Remesher::polish() {
   // triangle (cgal/boeing.off at epsilon 0.5 %, once the strips between its panels' creases were
   // refined: a 0.00-degree triangle between two border vertices, which a collapse or a flip
   // removes). The same repair, guarded as there, for what is still under a degree.
+  // Last, what that leaves: a strip with no area between two feature lines laid on one line
+  // (degenerate.cpp, collapse_flat_across_features).
+  m.merge_flat_across_features = true;
   m.fix_bad_faces(kDegenerateAngleDeg);
+  m.merge_flat_across_features = false;
   m.crossing_guard.stop();
   m.leave_whole_mesh();
   return moved;

@@ -234,6 +234,10 @@ struct Remesher::Impl : RemeshScratch {
   // as it is; returns the repairs done. Before the reference is built, without the crossing guard.
   size_t remove_degenerate_faces();
   bool remove_border_ear(Halfedge long_side);
+  // polish()'s last repair of a triangle under a degree that fix_bad_faces could not remove
+  // (degenerate.cpp); on while merge_flat_across_features is set.
+  bool collapse_flat_across_features(const Halfedge sides[3]);
+  bool merge_flat_across_features = false;
   bool is_zero_area(mesh::Face f) const;
   Halfedge longest_side(mesh::Face f, bool* needle, Halfedge* shortest) const;
   bool repair_flip_ok(Edge e) const;
@@ -441,8 +445,10 @@ struct Remesher::Impl : RemeshScratch {
   bool collapse_allowed(Halfedge h) const;
   bool collapse_topology_ok(Halfedge h) const;
   // min_cos: how far a surviving triangle's normal may turn (0.5 = 60 degrees).
+  // check_reference_lines: also collapse_stays_near_reference (off only for
+  // collapse_flat_across_features, which checks the surface's distance itself).
   bool collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move, bool check_lengths = true,
-                            double min_cos = 0.5) const;
+                            double min_cos = 0.5, bool check_reference_lines = true) const;
   double collapse_quality(Halfedge h) const;
   // The smallest angle (squared sine) of the triangles around v with v moved to `at`, leaving out
   // those with the corner `skip` (the ones a collapse towards it removes; none when invalid).

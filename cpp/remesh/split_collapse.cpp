@@ -293,7 +293,7 @@ bool Remesher::Impl::collapse_topology_ok(Halfedge h) const {
 // triangle around the moving end(s) keeps its orientation within 60 degrees and a non-zero area.
 // The length test is the cheap one that fails most often, so it runs first over both rings.
 bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool both_ends_move,
-                                           bool check_lengths, double min_cos) const {
+                                           bool check_lengths, double min_cos, bool check_reference_lines) const {
   Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   Halfedge o = mesh.opposite(h);
   Vertex x = mesh.is_boundary(h) ? Vertex() : mesh.to_vertex(mesh.next(h));
@@ -336,7 +336,7 @@ bool Remesher::Impl::collapse_geometry_ok(Halfedge h, const Point& target, bool 
   // which allows a few tolerances itself (fix_bad_faces): held to one, it left the icosahedron at
   // epsilon 0.01 % a 3.4-degree triangle.
   return normals_ok(v0, v1) && (!both_ends_move || normals_ok(v1, v0)) &&
-         collapse_stays_near_reference(h, target, both_ends_move) &&
+         (!check_reference_lines || collapse_stays_near_reference(h, target, both_ends_move)) &&
          (!check_lengths || collapse_keeps_fidelity(h, target, both_ends_move));
 }
 

@@ -50,6 +50,24 @@ SurfaceMesh cap_on_a_border_fold() {
   return mesh::build_from_triangles(points, Triangles{{0, 1, 2}, {2, 1, 3}});
 }
 
+// A roof (two halves meeting at 90 degrees along the x axis) whose ridge is two feature lines
+// nearly on one line: the left half ends at the path (0,0,0), (1,0,0), (3,0,0), (4,0,0), the right
+// half at (0,0,0), (2,d,0), (4,0,0), and between them a strip of three triangles of about d / 1 rad
+// (d of 1e-7: 6e-6 degrees). Remeshed with features at 30 degrees, the strip's edges are feature
+// lines and the remesher lays the two lines onto one. This is what --features 45 made of an input
+// flap folded back onto its neighbour (cgal/pig.off at epsilon 1 %: three triangles of 0.00 degrees
+// between two corners).
+SurfaceMesh roof_with_a_doubled_ridge(double d) {
+  const Points points = {{0, 0, 0},  {1, 0, 0},  {2, d, 0},  {3, 0, 0}, {4, 0, 0}, {0, -1, -1},
+                         {1, -1, -1}, {3, -1, -1}, {4, -1, -1}, {0, 1, -1}, {2, 1, -1}, {4, 1, -1}};
+  return mesh::build_from_triangles(points, Triangles{// left half, on the path 0 1 3 4
+                                                      {5, 6, 1}, {5, 1, 0}, {6, 7, 3}, {6, 3, 1}, {7, 8, 4}, {7, 4, 3},
+                                                      // right half, on the path 0 2 4
+                                                      {0, 2, 10}, {0, 10, 9}, {2, 4, 11}, {2, 11, 10},
+                                                      // the strip between the two paths
+                                                      {0, 1, 2}, {1, 3, 2}, {3, 4, 2}});
+}
+
 size_t zero_area_faces(const SurfaceMesh& m) {
   size_t n = 0;
   for (mesh::Face f : m.faces()) {
@@ -152,5 +170,26 @@ TEST(RemeshDegenerate, CapOnABorderFoldIsRemoved) {
     EXPECT_NEAR(q.area, 0.5, 1e-9);  // the triangle with area, all of it
     EXPECT_GE(q.min_angle_deg, 25.0);
     EXPECT_LT(m.n_vertices(), 200u);
+  }
+}
+
+// Before: the remesh ended with triangles of 0.00 degrees where the two lines met, between
+// corners and feature lines that every repair keeps apart and in place. Now the last repair of
+// polish() collapses their edges across those rules where the surface stays within the tolerance.
+TEST(RemeshDegenerate, FlatTrianglesBetweenTwoFeatureLinesAreRemoved) {
+  for (const double d : {1e-7, -1e-7}) {
+    SCOPED_TRACE(testing::Message() << "ridge offset " << d);
+    const SurfaceMesh input = roof_with_a_doubled_ridge(d);
+    SurfaceMesh m = input;
+    remesh::RemeshOptions o = remesh::default_options_for(m);
+    o.feature_angle_deg = 30;
+    const remesh::RemeshReport r = remesh::remesh(m, o);
+    ASSERT_NO_THROW(m.validate());
+    EXPECT_TRUE(r.warning.empty()) << r.warning;
+    EXPECT_EQ(zero_area_faces(m), 0u);
+    EXPECT_GE(geometry::quality_report(m).min_angle_deg, 1.0);  // polish()'s threshold
+    EXPECT_EQ(geometry::genus(m), 0);
+    EXPECT_LE(geometry::distance_between(m, input, 20000).hausdorff_rel,
+              2 * o.epsilon / remesh::bounding_box_diagonal(input));
   }
 }
