@@ -20,7 +20,6 @@
 // it leaves (reference.cpp), and the curvature there is not measured (geometry/curvature.cpp).
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -39,8 +38,8 @@ constexpr double kNeedleRatio2 = 1e-12;
 // whose neighbour a flip of this pass made repairable. A strip of n collinear triangles takes
 // about log2(n) passes; this is only the bound that makes the work finite whatever the input.
 constexpr int kMaxPasses = 64;
-// collapse_flat_across_features in uniform remeshing: the longest edge it collapses, as a share of the
-// target length (the surface moves by at most that much).
+// collapse_flat_across_features in uniform remeshing: how far from the reference its new edges may
+// pass, as a share of the target length.
 constexpr double kFlatCollapseLengthShare = 0.25;
 }  // namespace
 
@@ -139,23 +138,23 @@ size_t Remesher::Impl::remove_degenerate_faces() {
 // lines that run on top of each other; the remesher lays both on one line, and the strip of
 // triangles between them has no area (cgal/pig.off at epsilon 1 %, features 45: three triangles of
 // 0.00 degrees between two corners). Every other repair keeps feature lines apart and corners in
-// place, so none applies there. This one collapses an edge of the triangle across those rules,
-// the shortest edge first and a vertex that is not a corner first, where the link condition holds,
-// no triangle around it turns over or goes under a degree, nothing crosses (the guard) and the
-// surface stays near the reference. At worst it merges two feature lines, which the output (a
-// triangle mesh without feature marks) does not show; the survivor's class is counted again.
-// A collapse moves the surface by at most the length of its edge. Adaptive, collapse_keeps_fidelity
-// holds it to the tolerance of the reference (one, not the sliver repair's four: the triangle it
-// removes is no sliver to trade against, and 4 tolerances took cgal/3torus.off at epsilon 0.01 %,
-// features 45, from a Hausdorff distance of 0.011 % to 0.040 %, twice the bound); uniform remeshing has no tolerance
-// (its bound is the target length), so the edge must be shorter than kFlatCollapseLengthShare of it.
-// Not repaired: a strip of many flat triangles in a row (uniform lengths split the doubled line
-// into one), where every collapse leaves a flat triangle that the guard refuses to create.
+// place, so none applies there. This one collapses an edge of the triangle across those rules:
+// - the shortest edge first, and a vertex that is not a corner first;
+// - where the link condition holds, no triangle around it turns over or goes under a degree, and
+//   the guard finds no crossing;
+// - where the new edges stay within one tolerance of the reference (collapse_stays_within), not
+//   the sliver repair's four: the triangle it removes is no sliver to trade against, and four took
+//   cgal/3torus.off at epsilon 0.01 %, features 45, from a Hausdorff distance of 0.011 % to
+//   0.040 %, twice the bound. Uniform remeshing has no tolerance (its bound is the target length):
+//   there kFlatCollapseLengthShare of the length.
+// At worst it merges two feature lines, which the output (a triangle mesh without feature marks)
+// does not show; the survivor's class is counted again. Not repaired: a strip of many flat
+// triangles in a row, where every collapse leaves a flat triangle that the guard refuses to create.
 bool Remesher::Impl::collapse_flat_across_features(const Halfedge sides[3]) {
   if (mirror_axis >= 0) return false;  // a repair on one side only would break the symmetry
-  if (opt.adaptive && !(fidelity_tolerance() > 0)) return false;  // no current reference to measure against
-  const double max_length =
-      opt.adaptive ? std::numeric_limits<double>::infinity() : kFlatCollapseLengthShare * opt.target_length;
+  if (!has_reference || reference_stale || !whole_mesh) return false;  // nothing to measure against
+  const double tolerance = opt.adaptive ? fidelity_tolerance() : kFlatCollapseLengthShare * opt.target_length;
+  if (!(tolerance > 0)) return false;
   std::array<std::pair<double, Halfedge>, 3> by_length;
   for (int i = 0; i < 3; ++i) {
     const Vec3 d = mesh.position(mesh.to_vertex(sides[i])) - mesh.position(mesh.from_vertex(sides[i]));
@@ -170,9 +169,9 @@ bool Remesher::Impl::collapse_flat_across_features(const Halfedge sides[3]) {
         if ((vclass[v0] == kCorner) != move_corner) continue;
         if (scope[v0] != kActive || scope[v1] == kOutside || anchored(v0) || masked(v0)) continue;
         const Point target = mesh.position(v1);
-        if (side.first > max_length * max_length || !mesh.is_collapse_ok(h) ||
+        if (!mesh.is_collapse_ok(h) ||
             !collapse_geometry_ok(h, target, false, /*check_lengths=*/false, 0.5, /*check_reference_lines=*/false) ||
-            collapse_crosses(h, target, false) || !collapse_keeps_fidelity(h, target, false))
+            collapse_crosses(h, target, false) || !collapse_stays_within(h, target, false, tolerance))
           continue;
         apply_collapse(h, false);
         int features = 0;

@@ -147,7 +147,11 @@ bool Remesher::Impl::edge_strays(Edge e, double tolerance) const {
 bool Remesher::Impl::collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move,
                                              double tolerance_times) const {
   const double tolerance = tolerance_times * fidelity_tolerance();
-  if (!(tolerance > 0)) return true;
+  return !(tolerance > 0) || collapse_stays_within(h, target, both_ends_move, tolerance);
+}
+
+bool Remesher::Impl::collapse_stays_within(Halfedge h, const Point& target, bool both_ends_move,
+                                           double tolerance) const {
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   const Halfedge o = mesh.opposite(h);
   // The third corners of the two triangles that vanish: with v1 staying, its edges to them are

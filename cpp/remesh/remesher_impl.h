@@ -277,6 +277,8 @@ struct Remesher::Impl : RemeshScratch {
   Point place_on_reference(Edge e, const Point& mid) const;  // where a fidelity split puts its vertex  // p farther than fidelity_tolerance() from it
   // (tolerance_times: of fidelity_tolerance(); the sliver repair allows more)
   bool collapse_keeps_fidelity(Halfedge h, const Point& target, bool both_ends_move, double tolerance_times = 1.0) const;
+  // The same against an absolute tolerance (> 0), whatever the mode (needs a current reference).
+  bool collapse_stays_within(Halfedge h, const Point& target, bool both_ends_move, double tolerance) const;
   bool flip_keeps_fidelity(Edge e, double tolerance_times = 1.0) const;  // a flip of e (its new edge, its old one's midpoint)
   // Whether p lies within `limit` of one of `triangles` triangles, given as three corners each.
   bool near_triangles(const Point& p, const Point* corners, size_t triangles, double limit) const;
