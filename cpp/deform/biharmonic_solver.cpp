@@ -1,4 +1,5 @@
 #include "deform/biharmonic_solver.h"
+#include "mesh/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,8 +13,6 @@
 namespace adasculpt::deform {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 using SpMat = Eigen::SparseMatrix<double>;
 }  // namespace
 

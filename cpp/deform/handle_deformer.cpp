@@ -10,13 +10,12 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/triangle.h"
+#include "mesh/clock.h"
 #include "mesh/vertex_mask.h"
 
 namespace adasculpt::deform {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 }  // namespace
 
 HandleDeformer::HandleDeformer(const DeformOptions& options) : options_(options) {}

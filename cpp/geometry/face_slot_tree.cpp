@@ -28,7 +28,7 @@ bool live(const mesh::SurfaceMesh& m, std::uint32_t slot) {
   return slot < m.faces_size() && !m.is_deleted(mesh::Face(slot));
 }
 
-void corners(const mesh::SurfaceMesh& m, std::uint32_t slot, Point out[3]) {
+void slot_corners(const mesh::SurfaceMesh& m, std::uint32_t slot, Point out[3]) {
   mesh::Vertex v[3];
   m.face_vertices(mesh::Face(slot), v);
   for (int i = 0; i < 3; ++i) out[i] = m.position(v[i]);
@@ -70,7 +70,7 @@ void FaceSlotTree::build(const mesh::SurfaceMesh& m) {
   for (std::uint32_t f = 0; f < n; ++f) {
     if (!live(m, f)) continue;
     Point c[3];
-    corners(m, f, c);
+    slot_corners(m, f, c);
     mid[f] = (c[0] + c[1] + c[2]) / 3.0;
     lo = glm::min(lo, mid[f]);
     hi = glm::max(hi, mid[f]);
@@ -152,7 +152,7 @@ void FaceSlotTree::fit_leaf(const mesh::SurfaceMesh& m, std::uint32_t leaf) {
   for (size_t i = size_t(leaf) * kFan; i < end; ++i) {
     if (!live(m, order_[i])) continue;
     Point c[3];
-    corners(m, order_[i], c);
+    slot_corners(m, order_[i], c);
     for (const Point& p : c) {
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
@@ -265,7 +265,7 @@ FaceSlotTree::Hit FaceSlotTree::intersect_ray(const mesh::SurfaceMesh& m, const 
   };
   auto test = [&](std::uint32_t slot) {
     Point c[3];
-    corners(m, slot, c);
+    slot_corners(m, slot, c);
     double t, u, v;
     if (!ray_triangle(origin, dir, c[0], c[1], c[2], &t, &u, &v) || !better(t, slot, best.t, best.face)) return;
     best.t = t;
@@ -290,7 +290,7 @@ FaceSlotTree::Hit FaceSlotTree::closest_point(const mesh::SurfaceMesh& m, const 
   };
   auto test = [&](std::uint32_t slot) {
     Point c[3];
-    corners(m, slot, c);
+    slot_corners(m, slot, c);
     double bary[3];
     const Point p = closest_point_on_triangle(q, c[0], c[1], c[2], bary);
     const double d2 = glm::dot(p - q, p - q);

@@ -49,7 +49,7 @@ constexpr double kSplitMinSin2 = 0.0670;  // sin^2 15 degrees
 // iterations after it rebuild the horn (cgal/triceratops at epsilon 1 %: the tips 3.1 % of the
 // diagonal from the surface with the 15-degree limit, 1.5 % with this, min angle 29.6 -> 28.7).
 constexpr double kTipSplitMinSin2 = 0.0027;  // sin^2 3 degrees
-constexpr double kTipDeficit = M_PI / 4;
+constexpr double kPinnedTipDeficit = M_PI / 4;
 // Crease samples (sample_reference_creases): at most this many per reference edge, and in all
 // this many per reference point or the floor, whichever is more; past that the spacing grows.
 constexpr size_t kMaxSamplesPerEdge = 256;
@@ -541,7 +541,7 @@ int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest, bool 
   }
   int order[3] = {0, 1, 2};
   std::sort(order, order + 3, [&](int a, int b) { return side_d2[a] < side_d2[b]; });
-  const bool tip = point < tree.points().size() && reference_angle_deficit(point) >= kTipDeficit;
+  const bool tip = point < tree.points().size() && reference_angle_deficit(point) >= kPinnedTipDeficit;
   const double min_sin2 = tip ? kTipSplitMinSin2 : kSplitMinSin2;
   for (int k : order) {
     const Edge e = mesh.edge(sides[k]);

@@ -1,4 +1,5 @@
 #include "sculpt/grab.h"
+#include "mesh/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,8 +8,6 @@
 namespace adasculpt::sculpt {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 }  // namespace
 
 FramePlan plan_frame(size_t region_vertices, bool sizing_due, const deform::DeformOptions& options) {

@@ -18,6 +18,7 @@
 #include "geometry/mirror_tracker.h"
 #include "geometry/topology.h"
 #include "io/load_mesh.h"
+#include "mesh/clock.h"
 #include "mesh/flat_walk.h"
 #include "mesh/build_from_triangles.h"
 #include "mesh/vertex_mask.h"
@@ -32,8 +33,6 @@
 namespace adasculpt::sculpt {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;

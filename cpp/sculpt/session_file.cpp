@@ -13,31 +13,31 @@ namespace adasculpt::sculpt {
 namespace {
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& context, const std::string& field, const std::string& what) {
+[[noreturn]] void fail_at(const std::string& context, const std::string& field, const std::string& what) {
   throw std::invalid_argument(context + "'" + field + "' " + what);
 }
 
 double positive_number(const json& j, const std::string& context, const std::string& field, bool allow_zero = false) {
-  if (!j.is_number()) fail(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
+  if (!j.is_number()) fail_at(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
   const double v = j.get<double>();
   if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0))
-    fail(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
+    fail_at(context, field, allow_zero ? "must be a non-negative number" : "must be a positive number");
   return v;
 }
 
 int positive_int(const json& j, const std::string& context, const std::string& field) {
   if (!j.is_number_integer() && !(j.is_number() && std::floor(j.get<double>()) == j.get<double>()))
-    fail(context, field, "must be a positive integer");
+    fail_at(context, field, "must be a positive integer");
   const double v = j.get<double>();
-  if (!(v >= 1) || v > 1e6) fail(context, field, "must be a positive integer (at most 1000000)");
+  if (!(v >= 1) || v > 1e6) fail_at(context, field, "must be a positive integer (at most 1000000)");
   return static_cast<int>(v);
 }
 
 Vec3 vec3(const json& j, const std::string& context, const std::string& field) {
-  if (!j.is_array() || j.size() != 3) fail(context, field, "must be an array of 3 numbers");
+  if (!j.is_array() || j.size() != 3) fail_at(context, field, "must be an array of 3 numbers");
   Vec3 v;
   for (int i = 0; i < 3; ++i) {
-    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) fail(context, field, "must be an array of 3 numbers");
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) fail_at(context, field, "must be an array of 3 numbers");
     v[i] = j[i].get<double>();
   }
   return v;
@@ -50,16 +50,16 @@ LengthSetting length(const json& j, const std::string& context, const std::strin
     s.value = j.get<double>();
   } else if (j.is_string()) {
     const std::string t = j.get<std::string>();
-    if (t.empty() || t.back() != '%') fail(context, field, what);  // a string is a percentage
+    if (t.empty() || t.back() != '%') fail_at(context, field, what);  // a string is a percentage
     try {
       s = remesh::parse_length_spec(t, field);
     } catch (const std::invalid_argument&) {
-      fail(context, field, what);
+      fail_at(context, field, what);
     }
   } else {
-    fail(context, field, what);
+    fail_at(context, field, what);
   }
-  if (!std::isfinite(s.value) || s.value <= 0) fail(context, field, what);
+  if (!std::isfinite(s.value) || s.value <= 0) fail_at(context, field, what);
   return s;
 }
 
@@ -78,22 +78,22 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
   check_keys(g, ctx, {"center", "handle_radius", "roi_radius", "translate", "rotate", "scale", "substeps"});
   GrabStep s;
   for (const char* k : {"center", "handle_radius", "roi_radius"})
-    if (!g.contains(k)) fail(ctx, k, "is missing");
+    if (!g.contains(k)) fail_at(ctx, k, "is missing");
   s.center = vec3(g["center"], ctx, "center");
   s.handle_radius = positive_number(g["handle_radius"], ctx, "handle_radius", true);
   s.roi_radius = positive_number(g["roi_radius"], ctx, "roi_radius");
   if (g.contains("translate")) s.translate = vec3(g["translate"], ctx, "translate");
   if (g.contains("rotate")) {
     const json& r = g["rotate"];
-    if (!r.is_object()) fail(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
+    if (!r.is_object()) fail_at(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
     check_keys(r, ctx + "rotate: ", {"axis", "degrees"});
     if (!r.contains("axis") || !r.contains("degrees"))
-      fail(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
+      fail_at(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
     s.axis = vec3(r["axis"], ctx, "rotate.axis");
-    if (!(glm::length(s.axis) > 0)) fail(ctx, "rotate.axis", "must not be the zero vector");
+    if (!(glm::length(s.axis) > 0)) fail_at(ctx, "rotate.axis", "must not be the zero vector");
     s.axis = glm::normalize(s.axis);
     if (!r["degrees"].is_number() || !std::isfinite(r["degrees"].get<double>()))
-      fail(ctx, "rotate.degrees", "must be a number");
+      fail_at(ctx, "rotate.degrees", "must be a number");
     s.degrees = r["degrees"].get<double>();
   }
   if (g.contains("scale")) s.scale = positive_number(g["scale"], ctx, "scale");
@@ -103,9 +103,9 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
 const char* const kAxes[] = {"x", "y", "z"};
 
 std::vector<Point> parse_path(const json& j, const std::string& ctx) {
-  if (!j.contains("path")) fail(ctx, "path", "is missing");
+  if (!j.contains("path")) fail_at(ctx, "path", "is missing");
   const json& path = j["path"];
-  if (!path.is_array() || path.empty()) fail(ctx, "path", "must be a non-empty array of [x,y,z] points");
+  if (!path.is_array() || path.empty()) fail_at(ctx, "path", "must be a non-empty array of [x,y,z] points");
   std::vector<Point> out;
   for (size_t i = 0; i < path.size(); ++i) out.push_back(vec3(path[i], ctx, "path[" + std::to_string(i) + "]"));
   return out;
@@ -124,10 +124,10 @@ BrushStroke parse_brush(const json& b, const std::string& ctx) {
   const json& path = b["path"];
   if (b.contains("pressure")) {
     const json& v = b["pressure"];
-    if (!v.is_array() || v.size() != path.size()) fail(ctx, "pressure", "must be an array with one number per path point");
+    if (!v.is_array() || v.size() != path.size()) fail_at(ctx, "pressure", "must be an array with one number per path point");
     for (const json& x : v) {
       if (!x.is_number() || !(x.get<double>() >= 0 && x.get<double>() <= 1))
-        fail(ctx, "pressure", "must hold numbers between 0 and 1");
+        fail_at(ctx, "pressure", "must hold numbers between 0 and 1");
       s.pressure.push_back(x.get<double>());
     }
   }
@@ -141,43 +141,43 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
   check_keys(b, ctx, {"tool", "radius", "strength", "spacing", "symmetry", "invert", "detail", "falloff"},
              stroke_keys);
   for (const char* k : {"tool", "radius"})
-    if (!b.contains(k)) fail(ctx, k, "is missing");
+    if (!b.contains(k)) fail_at(ctx, k, "is missing");
   deform::BrushSettings st;
   const auto tool = b["tool"].is_string() ? deform::parse_brush_tool(b["tool"].get<std::string>()) : std::nullopt;
-  if (!tool) fail(ctx, "tool", std::string("must be one of ") + deform::brush_tool_list());
+  if (!tool) fail_at(ctx, "tool", std::string("must be one of ") + deform::brush_tool_list());
   st.tool = *tool;
   st.radius = positive_number(b["radius"], ctx, "radius");
   if (b.contains("strength")) {
     const json& v = b["strength"];
-    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail(ctx, "strength", "must be a number between 0 and 1");
+    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail_at(ctx, "strength", "must be a number between 0 and 1");
     st.strength = v.get<double>();
   }
   if (b.contains("spacing")) {
     const json& v = b["spacing"];
     if (!v.is_number() || !(v.get<double>() >= 0.05 && v.get<double>() <= 4))
-      fail(ctx, "spacing", "must be a number between 0.05 and 4 (fraction of the radius)");
+      fail_at(ctx, "spacing", "must be a number between 0.05 and 4 (fraction of the radius)");
     st.spacing = v.get<double>();
   }
   if (b.contains("symmetry")) {
     const json& v = b["symmetry"];
     const std::string a = v.is_string() ? v.get<std::string>() : "?";
     st.symmetry_axis = a == "none" ? -1 : a == "x" ? 0 : a == "y" ? 1 : a == "z" ? 2 : -2;
-    if (st.symmetry_axis == -2) fail(ctx, "symmetry", "must be one of x, y, z, none");
+    if (st.symmetry_axis == -2) fail_at(ctx, "symmetry", "must be one of x, y, z, none");
   }
   if (b.contains("invert")) {
-    if (!b["invert"].is_boolean()) fail(ctx, "invert", "must be true or false");
+    if (!b["invert"].is_boolean()) fail_at(ctx, "invert", "must be true or false");
     st.invert = b["invert"].get<bool>();
   }
   if (b.contains("detail")) {
     const json& v = b["detail"];
     if (!v.is_number() || !(v.get<double>() >= 0) || !std::isfinite(v.get<double>()))
-      fail(ctx, "detail", "must be a non-negative length (edge length for this stroke; 0: the session's detail)");
+      fail_at(ctx, "detail", "must be a non-negative length (edge length for this stroke; 0: the session's detail)");
     st.detail = v.get<double>();
   }
   if (b.contains("falloff")) {  // absent: smooth, the curve of every stroke recorded before presets
     const json& v = b["falloff"];
     const auto f = v.is_string() ? deform::parse_brush_falloff(v.get<std::string>()) : std::nullopt;
-    if (!f) fail(ctx, "falloff", std::string("must be one of ") + deform::brush_falloff_list());
+    if (!f) fail_at(ctx, "falloff", std::string("must be one of ") + deform::brush_falloff_list());
     st.falloff = *f;
   }
   return st;
@@ -185,12 +185,12 @@ deform::BrushSettings parse_brush_settings(const json& b, const std::string& ctx
 
 MaskOp parse_mask_op(const json& m, const std::string& ctx, bool stroke) {
   if (!m.is_object()) throw std::invalid_argument(ctx + "must be an object");
-  if (!m.contains("op")) fail(ctx, "op", "is missing");
+  if (!m.contains("op")) fail_at(ctx, "op", "is missing");
   const auto kind = m["op"].is_string() ? parse_mask_op_kind(m["op"].get<std::string>()) : std::nullopt;
-  if (!kind) fail(ctx, "op", std::string("must be one of ") + mask_op_list());
+  if (!kind) fail_at(ctx, "op", std::string("must be one of ") + mask_op_list());
   MaskOp op;
   op.kind = *kind;
-  if (stroke && !mask_op_has_path(op.kind)) fail(ctx, "op", "must be paint or erase for a stroke");
+  if (stroke && !mask_op_has_path(op.kind)) fail_at(ctx, "op", "must be paint or erase for a stroke");
   if (!mask_op_has_path(op.kind)) {
     check_keys(m, ctx, {"op"});
     return op;
@@ -201,11 +201,11 @@ MaskOp parse_mask_op(const json& m, const std::string& ctx, bool stroke) {
     check_keys(m, ctx, {"op", "path", "radius", "strength"});
     op.path = parse_path(m, ctx);
   }
-  if (!m.contains("radius")) fail(ctx, "radius", "is missing");
+  if (!m.contains("radius")) fail_at(ctx, "radius", "is missing");
   op.radius = positive_number(m["radius"], ctx, "radius");
   if (m.contains("strength")) {
     const json& v = m["strength"];
-    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail(ctx, "strength", "must be a number between 0 and 1");
+    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1)) fail_at(ctx, "strength", "must be a number between 0 and 1");
     op.strength = v.get<double>();
   }
   return op;
@@ -231,11 +231,11 @@ SettingsPatch parse_settings(const json& s, const std::string& ctx) {
   if (s.contains("features")) {
     const json& f = s["features"];
     if (!f.is_number() || !std::isfinite(f.get<double>()) || f.get<double>() < 0 || f.get<double>() > 180)
-      fail(ctx, "features", "must be an angle in degrees between 0 and 180");
+      fail_at(ctx, "features", "must be an angle in degrees between 0 and 180");
     p.features = f.get<double>();
   }
   if (s.contains("guard_crossings")) {
-    if (!s["guard_crossings"].is_boolean()) fail(ctx, "guard_crossings", "must be true or false");
+    if (!s["guard_crossings"].is_boolean()) fail_at(ctx, "guard_crossings", "must be true or false");
     p.guard_crossings = s["guard_crossings"].get<bool>();
   }
   return p;
@@ -297,7 +297,7 @@ SessionFile parse_session_file(const json& j) {
       step.kind = SessionStep::Kind::Remesh;
       if (!v.is_object()) throw std::invalid_argument(ctx + "must be an object {\"iterations\": k}");
       check_keys(v, ctx, {"iterations", "detail"});
-      if (!v.contains("iterations")) fail(ctx, "iterations", "is missing");
+      if (!v.contains("iterations")) fail_at(ctx, "iterations", "is missing");
       step.count = positive_int(v["iterations"], ctx, "iterations");
       if (v.contains("detail")) step.detail = positive_number(v["detail"], ctx, "detail", true);
     } else if (kind == "mask") {
