@@ -286,15 +286,22 @@ struct Remesher::Impl : RemeshScratch {
   // ---- the other side of the fidelity check (coverage.cpp): reference points the surface left
   // more than kCoverageLimit x the tolerance behind (a tip worn away iteration by iteration)
   // get a vertex back on them (a vertex moved there or an edge split there), anchored to them.
-  // Returns the pins; *splits: how many split an edge (none unless may_split).
+  // Returns the pins; *splits: how many split an edge. With may_split false (the last iterations
+  // of a batch, where no later iteration rebuilds around a split), only a point farther than the
+  // Hausdorff target (coverage.cpp: kLateSplitTolerances) may get a split, whose edges stay on the
+  // reference.
   size_t cover_reference_points(bool may_split, size_t* splits);
   // An anchored vertex is never removed and moves only within the limit of its point, so that it
   // keeps the point covered; within that it moves like any free vertex (a corner that never
   // moved left 16-degree triangles around it on fandisk at the defaults).
   bool anchored(Vertex v) const { return anchor[v] != UINT32_MAX && fidelity_tolerance() > 0; }
   bool anchor_holds(Vertex v, const Point& p) const;
+  // How a pin may split an edge: never, as the iterations do (the halves may stray from the
+  // reference where a point's pin rebuilds a worn tip), or only where no edge at the new vertex
+  // strays (late: no iteration follows to rebuild around it).
+  enum class PinSplit { kNever, kAny, kLate };
   // 0: not pinned, 1: a vertex moved onto the point, 2: an edge split there.
-  int pin_reference_point(std::uint32_t point, Face nearest, bool may_split);
+  int pin_reference_point(std::uint32_t point, Face nearest, PinSplit split);
   bool move_onto_reference_point(Vertex w, std::uint32_t point);
   double reference_angle_deficit(std::uint32_t point) const;  // 2 pi - the angles at it (radians)
   // Sliver placement moves v only where it keeps covered every reference point near it that its
