@@ -225,3 +225,65 @@ TEST(RemeshFidelity, CleanupOfCapsAlongASharpEdgeKeepsTheEdge) { expect_capped_b
 // deeply, and a cap's height said it was not (before: 0.79 % of the diagonal at epsilon 0.05 %).
 // The flat face beyond the cap counts.
 TEST(RemeshFidelity, SharpEdgeUnderThinCapsIsCovered) { expect_capped_box_within_target(0.002); }
+
+namespace {
+
+// The surface of a union of unit cubes (occupied(i, j, k) on an n^3 grid), every square face
+// split in two: a voxel model, flat sides meeting at right-angled steps.
+template <typename Occupied>
+SurfaceMesh voxel_surface(int n, Occupied occupied) {
+  auto inside = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < n && j < n && k < n && occupied(i, j, k);
+  };
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::uint32_t> index((n + 1) * (n + 1) * (n + 1), UINT32_MAX);
+  auto corner = [&](int i, int j, int k) {
+    std::uint32_t& id = index[(i * (n + 1) + j) * (n + 1) + k];
+    if (id == UINT32_MAX) {
+      id = static_cast<std::uint32_t>(points.size());
+      points.push_back({double(i), double(j), double(k)});
+    }
+    return id;
+  };
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        if (!inside(i, j, k)) continue;
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side : {-1, 1}) {
+            int c[3] = {i, j, k};
+            c[axis] += side;
+            if (inside(c[0], c[1], c[2])) continue;
+            // The square between the cube and its empty neighbour, counter-clockwise from outside.
+            int o[3] = {i, j, k};
+            if (side > 0) ++o[axis];
+            int u[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+            u[(axis + 1) % 3] = 1;
+            w[(axis + 2) % 3] = 1;
+            std::uint32_t q[4] = {corner(o[0], o[1], o[2]), corner(o[0] + u[0], o[1] + u[1], o[2] + u[2]),
+                                  corner(o[0] + u[0] + w[0], o[1] + u[1] + w[1], o[2] + u[2] + w[2]),
+                                  corner(o[0] + w[0], o[1] + w[1], o[2] + w[2])};
+            if (side < 0) std::swap(q[1], q[3]);
+            triangles.push_back({q[0], q[1], q[2]});
+            triangles.push_back({q[0], q[2], q[3]});
+          }
+      }
+  return mesh::build_from_triangles(points, triangles);
+}
+
+}  // namespace
+
+// A flight of 8 steps, 4 wide, as voxels: its sides are flat, split into unit squares, and an
+// edge from one side to a step two creases away can lie on the plane of a third side without
+// being near it. The planes' estimate of segment_strays took such an edge for one on the surface
+// (cgal/tripod at epsilon 0.05 %: 2.8 x the target); here at epsilon 0.2 % the remesh ended 0.52 %
+// of the diagonal off, 1.3 x the target. The estimate now holds only for ends on one triangle or
+// on two neighbours; the others are measured.
+TEST(RemeshFidelity, ChordsAcrossTwoCreasesAreMeasured) {
+  const SurfaceMesh stairs = voxel_surface(8, [](int i, int j, int k) { return j < 8 - i && k < 4; });
+  const Remeshed r = remeshed(stairs, 0.002, 0.002);
+  EXPECT_LE(r.hausdorff_rel, 2 * 0.002);
+  EXPECT_NO_THROW(r.mesh.validate());
+  EXPECT_EQ(geometry::self_intersections(r.mesh, 1000).pairs.size(), 0u);
+}
