@@ -48,8 +48,6 @@ constexpr double kMinTurnCos = 0.05;
 // ended at 16 degrees (25.1 before pins and with these), its Hausdorff distance at 0.18 % of the
 // diagonal instead of 0.23 % (0.31 % before pins).
 constexpr double kMovedMinSin2 = 0.1786;  // sin^2 25 degrees
-// Late splits (see above): for points farther than this many tolerances from the surface.
-constexpr double kLateSplitTolerances = 2.0;
 constexpr double kSplitMinSin2 = 0.0670;  // sin^2 15 degrees
 // But a point on a tip (an angle deficit over 45 degrees: a horn's end, not a crumpled saddle of a
 // scan) may take a split down to 3 degrees: the tent over a worn horn is steep, and the
@@ -57,6 +55,8 @@ constexpr double kSplitMinSin2 = 0.0670;  // sin^2 15 degrees
 // diagonal from the surface with the 15-degree limit, 1.5 % with this, min angle 29.6 -> 28.7).
 constexpr double kTipSplitMinSin2 = 0.0027;  // sin^2 3 degrees
 constexpr double kPinnedTipDeficit = M_PI / 4;
+// Late splits (see above): for points farther than this many tolerances from the surface.
+constexpr double kLateSplitTolerances = 2.0;
 // Crease samples (sample_reference_creases): at most this many per reference edge, and in all
 // this many per reference point or the floor, whichever is more; past that the spacing grows.
 constexpr size_t kMaxSamplesPerEdge = 256;
@@ -349,6 +349,7 @@ size_t Remesher::Impl::cover_reference_points(bool may_split, size_t* splits) {
   });
   pinned_now.clear();
   size_t pins = 0;
+  const double late2 = (kLateSplitTolerances * tolerance) * (kLateSplitTolerances * tolerance);
   for (const Uncovered& u : uncovered) {
     if (splits_allowed() == 0) break;
     const Point& p = cover_point(u.point);
@@ -358,8 +359,7 @@ size_t Remesher::Impl::cover_reference_points(bool may_split, size_t* splits) {
     // The face may have gone in an earlier pin's split (its slot reused by a half): ask again.
     if (near_a_pin || mesh.is_deleted(u.nearest)) continue;
     if (u.point >= pts.size() && anchored_near(p, kCreasePinSpacing * cover_sizing(u.point))) continue;
-    const double late = kLateSplitTolerances * tolerance;
-    const PinSplit split = may_split ? PinSplit::kAny : u.distance2 > late * late ? PinSplit::kLate : PinSplit::kNever;
+    const PinSplit split = may_split ? PinSplit::kAny : u.distance2 > late2 ? PinSplit::kLate : PinSplit::kNever;
     if (const int how = pin_reference_point(u.point, u.nearest, split)) {
       *splits += how == 2;
       pinned_now.push_back(p);
@@ -568,7 +568,8 @@ int Remesher::Impl::pin_reference_point(std::uint32_t point, Face nearest, PinSp
     // not leave the reference: they tented across a corner beside it (cgal/anchor, tripod at
     // epsilon 0.2 %: 1.2-1.5 x 2 epsilon next to the pin). (A point's pin may: a worn tip is
     // rebuilt by the iterations after it. Not a late one: none follows.)
-    if (ok && (point >= tree.points().size() || split == PinSplit::kLate)) ok = !split_strays(e, p, cover_triangle(point));
+    const bool sample = point >= tree.points().size();
+    if (ok && (sample || split == PinSplit::kLate)) ok = !split_strays(e, p, cover_triangle(point));
     if (!ok || crossing_guard.split_crosses(mesh, e, p)) continue;
     const Vertex v = split_edge(e, p);
     anchor[v] = point;

@@ -113,7 +113,8 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
     // to the crease of two others, on the plane of one of them, its midpoint 0.53 % off the part,
     // 2.8 x the Hausdorff target). Measured.
     const auto& across = ref_adjacent[hint_a];
-    const bool one_crease = hint_a == hint_b || across[0] == hint_b || across[1] == hint_b || across[2] == hint_b;
+    const bool one_crease =
+        hint_a == hint_b || across[0] == hint_b || across[1] == hint_b || across[2] == hint_b;
     if (one_crease) {
       const auto& pts = tree.points();
       const auto& tris = tree.triangles();

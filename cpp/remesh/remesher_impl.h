@@ -296,9 +296,9 @@ struct Remesher::Impl : RemeshScratch {
   // moved left 16-degree triangles around it on fandisk at the defaults).
   bool anchored(Vertex v) const { return anchor[v] != UINT32_MAX && fidelity_tolerance() > 0; }
   bool anchor_holds(Vertex v, const Point& p) const;
-  // How a pin may split an edge: never, as the iterations do (the halves may stray from the
-  // reference where a point's pin rebuilds a worn tip), or only where no edge at the new vertex
-  // strays (late: no iteration follows to rebuild around it).
+  // Whether a pin that cannot move a vertex may split an edge: not at all; as the iterations before
+  // the last two do (a point's halves may stray from the reference: the iterations after rebuild
+  // the worn tip); or late, only where no edge at the new vertex strays (none follow).
   enum class PinSplit { kNever, kAny, kLate };
   // 0: not pinned, 1: a vertex moved onto the point, 2: an edge split there.
   int pin_reference_point(std::uint32_t point, Face nearest, PinSplit split);
