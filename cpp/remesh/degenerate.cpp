@@ -150,10 +150,14 @@ size_t Remesher::Impl::remove_degenerate_faces() {
 // At worst it merges two feature lines, which the output (a triangle mesh without feature marks)
 // does not show; the survivor's class is counted again. Not repaired: a strip of many flat
 // triangles in a row, where every collapse leaves a flat triangle that the guard refuses to create.
+double Remesher::Impl::feature_merge_tolerance() const {
+  if (!has_reference || reference_stale || !whole_mesh) return 0;  // nothing to measure against
+  return opt.adaptive ? fidelity_tolerance() : kFlatCollapseLengthShare * opt.target_length;
+}
+
 bool Remesher::Impl::collapse_flat_across_features(const Halfedge sides[3]) {
   if (mirror_axis >= 0) return false;  // a repair on one side only would break the symmetry
-  if (!has_reference || reference_stale || !whole_mesh) return false;  // nothing to measure against
-  const double tolerance = opt.adaptive ? fidelity_tolerance() : kFlatCollapseLengthShare * opt.target_length;
+  const double tolerance = feature_merge_tolerance();
   if (!(tolerance > 0)) return false;
   std::array<std::pair<double, Halfedge>, 3> by_length;
   for (int i = 0; i < 3; ++i) {

@@ -25,17 +25,25 @@ constexpr int kMaxLineWalk = 256;
 
 void Remesher::Impl::mark_line_kinks() {
   const std::vector<std::uint8_t> count = feature_edges_per_vertex();
-  for (Vertex v : mesh.vertices()) {
-    if (count[v.idx] != 2) continue;
-    Vertex ends[2];
-    int n = 0;
-    for (Halfedge h : mesh.halfedges(v))
-      if (is_feature(mesh.edge(h)) && n < 2) ends[n++] = mesh.to_vertex(h);
-    const Point& p = mesh.position(v);
-    const Vec3 in = p - mesh.position(ends[0]), out = mesh.position(ends[1]) - p;
-    const double turn = portable::atan2(glm::length(glm::cross(in, out)), glm::dot(in, out));
-    vclass[v] = turn > kMaxCurveTurn ? kCorner : kFeatureLine;
-  }
+  for (Vertex v : mesh.vertices())
+    if (count[v.idx] == 2) vclass[v] = class_of_line_vertex(v);
+}
+
+VertexClass Remesher::Impl::class_of_line_vertex(Vertex v) const {
+  Vertex ends[2];
+  int n = 0;
+  for (Halfedge h : mesh.halfedges(v))
+    if (is_feature(mesh.edge(h)) && n < 2) ends[n++] = mesh.to_vertex(h);
+  const Point& p = mesh.position(v);
+  const Vec3 in = p - mesh.position(ends[0]), out = mesh.position(ends[1]) - p;
+  const double turn = portable::atan2(glm::length(glm::cross(in, out)), glm::dot(in, out));
+  return turn > kMaxCurveTurn ? kCorner : kFeatureLine;
+}
+
+VertexClass Remesher::Impl::class_by_lines(Vertex v) const {
+  int features = 0;
+  for (const Halfedge out : mesh.halfedges(v)) features += is_feature(mesh.edge(out));
+  return features == 2 ? class_of_line_vertex(v) : vertex_class(features);
 }
 
 bool Remesher::Impl::is_line_kink(Vertex v) const {

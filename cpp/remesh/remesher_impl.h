@@ -209,6 +209,11 @@ struct Remesher::Impl : RemeshScratch {
   // become corners that collapses along the line may still remove (collapse_topology_ok).
   void mark_line_kinks();
   void mark_reference_tips();  // tips sharper than a cube's corner become corners (tips.cpp)
+  // A vertex with two feature edges: a line's vertex, or a corner where the line turns by more than
+  // kMaxCurveTurn (a kink).
+  VertexClass class_of_line_vertex(Vertex v) const;
+  // v's class from the feature edges it has now (after an edit that removed one of them).
+  VertexClass class_by_lines(Vertex v) const;
   bool is_line_kink(Vertex v) const;  // a corner with exactly two feature edges
   // Whether collapsing h along its feature line keeps the line within surface_tolerance() of the
   // reference line (true without a current reference, or for a free vertex).
@@ -453,6 +458,13 @@ struct Remesher::Impl : RemeshScratch {
   bool is_feature(Edge e) const { return feature[e] != 0; }
   bool collapse_allowed(Halfedge h) const;
   bool collapse_topology_ok(Halfedge h) const;
+  // collapse_for_angles' exceptions to the feature rules (angle_collapse.cpp): a line's end onto the
+  // line, and a line's detour around one triangle onto the triangle's third side.
+  bool line_end_collapse_ok(Halfedge h) const;
+  bool line_detour_collapse_ok(Halfedge h) const;
+  Halfedge line_end_edge(Vertex v) const;  // v's one feature edge, outgoing; invalid if not one
+  // How far from the reference the collapses that merge feature lines may take the surface (degenerate.cpp).
+  double feature_merge_tolerance() const;
   // min_cos: how far a surviving triangle's normal may turn (0.5 = 60 degrees).
   // check_reference_lines: also collapse_stays_near_reference (off only for
   // collapse_flat_across_features, which checks the surface's distance itself).
