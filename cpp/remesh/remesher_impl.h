@@ -330,6 +330,11 @@ struct Remesher::Impl : RemeshScratch {
   };
   std::vector<Uncovered> uncovered;
   std::vector<std::uint8_t> point_covered;  // per tree point, this call
+  std::vector<Face> covered_by;             // per covered tree point: a face within the limit (if known)
+  std::vector<std::uint32_t> coverage_queue;
+  Face a_face_at(Vertex v) const;
+  Face face_near_covering(const Point& p, Face f, double limit2) const;
+  void spread_cover_over_reference(double limit2);
   // Points along the reference's creases, covered like its points (coverage.cpp): a crease cut
   // off between two reference points is invisible to a check of the points alone. Ids from
   // tree.points().size() on name them (anchor, pins); the cover_* accessors take either kind.
