@@ -240,6 +240,18 @@ bool Remesher::Impl::fan_strayed_at(Vertex v, const Point& p, std::uint32_t hint
 
 bool Remesher::Impl::fan_strays(Vertex v) const { return fan_strayed_at(v, mesh.position(v), ref_hint[v]); }
 
+double Remesher::Impl::fan_stray_peak2(Vertex v, const Point& p, std::uint32_t hint) const {
+  double peak2 = 0;
+  for (Halfedge out : mesh.halfedges(v)) {
+    const Vec3 d = mesh.position(mesh.to_vertex(out)) - p;
+    for (const double t : {0.25, 0.5, 0.75}) {
+      const Point q = p + t * d;
+      peak2 = std::max(peak2, tree.closest_point(q, closest_on_reference(q, hint)).distance2);
+    }
+  }
+  return peak2;
+}
+
 // Relaxation slides a vertex on a sharp edge off it onto one side, and the projection keeps it
 // there: the edges from it to the other side then cut the edge. The guarded projection (safety.cpp)
 // catches it only where the fan turns by more than 45 degrees; an icosahedron's edges turn by 42

@@ -267,6 +267,9 @@ struct Remesher::Impl : RemeshScratch {
   double fidelity_tolerance() const;  // the base the limits multiply; 0 when the check is off (uniform, regions)
   bool segment_strays(const Point& a, std::uint32_t hint_a, const Point& b, std::uint32_t hint_b,
                       double tolerance) const;
+  // The largest squared distance from the reference of the quarter and middle points of v's edges,
+  // v at p (hint: the reference triangle under p), measured.
+  double fan_stray_peak2(Vertex v, const Point& p, std::uint32_t hint) const;
   bool edge_strays(Edge e, double tolerance) const;
   bool strays_at(const Point& p, std::uint32_t hint) const;
   size_t undo_straying_moves();  // after the guarded projection; see fidelity.cpp
