@@ -30,35 +30,16 @@ namespace {
 constexpr int kMaxAnglePasses = 3;
 }  // namespace
 
-// The feature rules' one exception here: the end of a feature line may collapse onto the line's
-// next vertex, which shortens the line by that edge (a line of one edge goes away). In the
+// The first exception to the feature rules here: the end of a feature line may collapse onto the
+// line's next vertex, which shortens the line by that edge (a line of one edge goes away). In the
 // iterations a line's end is a corner that never moves, so a short line (a crease of scan noise
 // under --features, a few tolerances long) shrinks to one edge between its two ends, at its
-// reference length however long the edges around it grow, and the triangles at it cannot be
-// mended by any other operation: the shared face.off at epsilon 2 %, features 45, kept a
-// 2.9-degree cap at a 0.3-long line with edges of 1.8 around it. The surface it leaves stays
-// within the tolerance of the merges across feature lines (feature_merge_tolerance), checked by the
-// caller with the other guards. Only an interior line's end (one feature edge, not a border), and
-// only where neither removed triangle has feature edges on both its other sides (lines merged).
-// The other exception: a feature line that makes a detour around one triangle. h's triangle has
-// three feature edges, and h runs from a line's vertex whose two feature edges are two of them.
-// Collapsing h takes the line onto the third side, a feature edge already, and removes the
-// triangle, which no flip may touch (its sides are feature edges) and every other collapse of its
-// corners would merge two lines. Interior edges only, and nothing else merges: the triangle across
-// h may not have two feature edges besides.
-bool Remesher::Impl::line_detour_collapse_ok(Halfedge h) const {
-  if (mirror_axis >= 0 || mesh.is_boundary(h)) return false;
-  const Halfedge o = mesh.opposite(h);
-  if (mesh.is_boundary(o)) return false;
-  const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
-  if (scope[v0] != kActive || scope[v1] == kOutside || anchored(v0) || masked(v0)) return false;
-  if (vclass[v0] != kFeatureLine && !is_line_kink(v0)) return false;  // two feature edges, no more
-  for (const Halfedge side : {h, mesh.next(h), mesh.prev(h)})
-    if (!is_feature(mesh.edge(side)) || mesh.is_boundary(mesh.edge(side))) return false;
-  if (is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o)))) return false;
-  return mesh.is_collapse_ok(h) && line_collapse_stays_near_reference(h);
-}
-
+// reference length however long the edges around it grow, and the triangles at it cannot be mended
+// by any other operation: the shared face.off at epsilon 2 %, features 45, kept a 2.9-degree cap at
+// a 0.3-long line with edges of 1.8 around it. The surface it leaves stays within the tolerance of
+// the merges across feature lines (feature_merge_tolerance), checked by the caller with the other
+// guards. Only an interior line's end (one feature edge, not a border), and only where neither
+// removed triangle has feature edges on both its other sides (lines merged).
 Halfedge Remesher::Impl::line_end_edge(Vertex v) const {
   Halfedge along;
   for (const Halfedge out : mesh.halfedges(v))
@@ -81,6 +62,25 @@ bool Remesher::Impl::line_end_collapse_ok(Halfedge h) const {
   if (is_feature(mesh.edge(mesh.next(h))) && is_feature(mesh.edge(mesh.prev(h)))) return false;
   if (is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o)))) return false;
   return mesh.is_collapse_ok(h);
+}
+
+// The second exception: a feature line that makes a detour around one triangle. h's triangle has
+// three feature edges, and h runs from a line's vertex whose two feature edges are two of them.
+// Collapsing h takes the line onto the third side, a feature edge already, and removes the
+// triangle, which no flip may touch (its sides are feature edges) and every other collapse of its
+// corners would merge two lines. Interior edges only, and nothing else merges: the triangle across
+// h may not have two feature edges besides.
+bool Remesher::Impl::line_detour_collapse_ok(Halfedge h) const {
+  if (mirror_axis >= 0 || mesh.is_boundary(h)) return false;
+  const Halfedge o = mesh.opposite(h);
+  if (mesh.is_boundary(o)) return false;
+  const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
+  if (scope[v0] != kActive || scope[v1] == kOutside || anchored(v0) || masked(v0)) return false;
+  if (vclass[v0] != kFeatureLine && !is_line_kink(v0)) return false;  // two feature edges, no more
+  for (const Halfedge side : {h, mesh.next(h), mesh.prev(h)})
+    if (!is_feature(mesh.edge(side)) || mesh.is_boundary(mesh.edge(side))) return false;
+  if (is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o)))) return false;
+  return mesh.is_collapse_ok(h) && line_collapse_stays_near_reference(h);
 }
 
 size_t Remesher::Impl::collapse_for_angles(double angle_deg) {
@@ -119,7 +119,8 @@ size_t Remesher::Impl::collapse_for_angles(double angle_deg) {
         candidates[n_candidates++] = mesh.opposite(side);
         if (!(merge_tolerance > 0)) continue;
         const Halfedge along = line_end_edge(mesh.from_vertex(side));
-        if (along.is_valid() && along != side && along != mesh.opposite(mesh.prev(side))) candidates[n_candidates++] = along;
+        if (along.is_valid() && along != side && along != mesh.opposite(mesh.prev(side)))
+          candidates[n_candidates++] = along;
       }
       for (int c = 0; c < n_candidates; ++c) {
         const Halfedge h = candidates[c];

@@ -132,6 +132,14 @@ size_t Remesher::Impl::remove_degenerate_faces() {
   return repaired;
 }
 
+// How far from the reference the repairs that merge or shorten feature lines may take the surface:
+// the tolerance, or in uniform remeshing (no tolerance) a share of the target length; 0 where there
+// is no current reference to measure against (regions, a stale reference).
+double Remesher::Impl::feature_merge_tolerance() const {
+  if (!has_reference || reference_stale || !whole_mesh) return 0;  // nothing to measure against
+  return opt.adaptive ? fidelity_tolerance() : kFlatCollapseLengthShare * opt.target_length;
+}
+
 // polish()'s last repair of a triangle under a degree that the sliver repair (fix_bad_faces) could
 // not remove because of the feature lines around it. On scans remeshed with --features 45, a flap
 // of the input folded back onto its neighbour (dihedral angles near 180 degrees) makes two feature
@@ -150,11 +158,6 @@ size_t Remesher::Impl::remove_degenerate_faces() {
 // At worst it merges two feature lines, which the output (a triangle mesh without feature marks)
 // does not show; the survivor's class is counted again. Not repaired: a strip of many flat
 // triangles in a row, where every collapse leaves a flat triangle that the guard refuses to create.
-double Remesher::Impl::feature_merge_tolerance() const {
-  if (!has_reference || reference_stale || !whole_mesh) return 0;  // nothing to measure against
-  return opt.adaptive ? fidelity_tolerance() : kFlatCollapseLengthShare * opt.target_length;
-}
-
 bool Remesher::Impl::collapse_flat_across_features(const Halfedge sides[3]) {
   if (mirror_axis >= 0) return false;  // a repair on one side only would break the symmetry
   const double tolerance = feature_merge_tolerance();
