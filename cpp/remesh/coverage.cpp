@@ -252,13 +252,28 @@ Face Remesher::Impl::face_near_covering(const Point& p, Face f, double limit2) c
 // neighbour on the reference is usually covered by the face that covers the point, or one next to
 // it: tried first, spreading from the covered points over the reference's edges (and along each
 // sampled crease from its ends). Each is an exact distance test, so the points left for the grid
-// are the same as before, only found sooner.
+// are the same as before, only found sooner: the dragon's remesh above 5.5 -> 2.1 s. Seeded from
+// every covered point, the spread cost the bunny's remesh at the defaults 1.2 % more instructions;
+// seeded from the uncovered ones, nothing measurable.
 void Remesher::Impl::spread_cover_over_reference(double limit2) {
   const auto& pts = tree.points();
   const auto& tris = tree.triangles();
+  // Seeded from the points still uncovered (few at a fine tolerance): each tries the faces of its
+  // covered neighbours; then out from each point covered that way.
   coverage_queue.clear();
-  for (std::uint32_t i = 0; i < pts.size(); ++i)
-    if (point_covered[i] && covered_by[i].is_valid()) coverage_queue.push_back(i);
+  for (std::uint32_t j = 0; j < pts.size(); ++j) {
+    if (point_covered[j]) continue;
+    for (std::uint32_t k = ref_fan_offset[j]; k < ref_fan_offset[j + 1] && !point_covered[j]; ++k)
+      for (const std::uint32_t i : tris[ref_fan[k]]) {
+        if (!point_covered[i] || !covered_by[i].is_valid()) continue;
+        const Face f = face_near_covering(pts[j], covered_by[i], limit2);
+        if (!f.is_valid()) continue;
+        point_covered[j] = 1;
+        covered_by[j] = f;
+        coverage_queue.push_back(j);
+        break;
+      }
+  }
   for (size_t next = 0; next < coverage_queue.size(); ++next) {
     const std::uint32_t i = coverage_queue[next];
     for (std::uint32_t k = ref_fan_offset[i]; k < ref_fan_offset[i + 1]; ++k)
