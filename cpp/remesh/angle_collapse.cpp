@@ -55,10 +55,7 @@ bool Remesher::Impl::line_end_collapse_ok(Halfedge h) const {
   const Halfedge o = mesh.opposite(h);
   const Vertex v0 = mesh.from_vertex(h), v1 = mesh.to_vertex(h);
   if (scope[v0] != kActive || scope[v1] == kOutside || anchored(v0) || masked(v0)) return false;
-  if (!is_feature(mesh.edge(h)) || mesh.is_boundary(mesh.edge(h))) return false;
-  int features = 0;
-  for (const Halfedge out : mesh.halfedges(v0)) features += is_feature(mesh.edge(out));
-  if (features != 1) return false;
+  if (line_end_edge(v0) != h || mesh.is_boundary(mesh.edge(h))) return false;  // v0's one feature edge
   if (is_feature(mesh.edge(mesh.next(h))) && is_feature(mesh.edge(mesh.prev(h)))) return false;
   if (is_feature(mesh.edge(mesh.next(o))) && is_feature(mesh.edge(mesh.prev(o)))) return false;
   return mesh.is_collapse_ok(h);

@@ -226,21 +226,22 @@ Face Remesher::Impl::a_face_at(Vertex v) const {
   return Face();
 }
 
+double Remesher::Impl::face_distance2(Face f, const Point& p) const {
+  Vertex c[3];
+  mesh.face_vertices(f, c);
+  double bary[3];
+  const Point q =
+      geometry::closest_point_on_triangle(p, mesh.position(c[0]), mesh.position(c[1]), mesh.position(c[2]), bary);
+  return glm::dot(q - p, q - p);
+}
+
 // Whether f, or a face next to it across an edge, lies within sqrt(limit2) of p; that face, if so.
 Face Remesher::Impl::face_near_covering(const Point& p, Face f, double limit2) const {
   if (!f.is_valid() || mesh.is_deleted(f)) return Face();
-  auto within = [&](Face g) {
-    Vertex c[3];
-    mesh.face_vertices(g, c);
-    double bary[3];
-    const Point q = geometry::closest_point_on_triangle(p, mesh.position(c[0]), mesh.position(c[1]),
-                                                       mesh.position(c[2]), bary);
-    return glm::dot(q - p, q - p) <= limit2;
-  };
-  if (within(f)) return f;
+  if (face_distance2(f, p) <= limit2) return f;
   for (const Halfedge h : mesh.halfedges(f)) {
     const Halfedge o = mesh.opposite(h);
-    if (!mesh.is_boundary(o) && within(mesh.face(o))) return mesh.face(o);
+    if (!mesh.is_boundary(o) && face_distance2(mesh.face(o), p) <= limit2) return mesh.face(o);
   }
   return Face();
 }
@@ -258,48 +259,41 @@ Face Remesher::Impl::face_near_covering(const Point& p, Face f, double limit2) c
 void Remesher::Impl::spread_cover_over_reference(double limit2) {
   const auto& pts = tree.points();
   const auto& tris = tree.triangles();
+  // Point j covered by `from` or a face next to it: marked, and queued to spread further.
+  auto try_cover = [&](std::uint32_t j, Face from) {
+    const Face f = face_near_covering(pts[j], from, limit2);
+    if (!f.is_valid()) return false;
+    point_covered[j] = 1;
+    covered_by[j] = f;
+    coverage_queue.push_back(j);
+    return true;
+  };
   // Seeded from the points still uncovered (few at a fine tolerance): each tries the faces of its
   // covered neighbours; then out from each point covered that way.
   coverage_queue.clear();
-  for (std::uint32_t j = 0; j < pts.size(); ++j) {
-    if (point_covered[j]) continue;
+  for (std::uint32_t j = 0; j < pts.size(); ++j)
     for (std::uint32_t k = ref_fan_offset[j]; k < ref_fan_offset[j + 1] && !point_covered[j]; ++k)
-      for (const std::uint32_t i : tris[ref_fan[k]]) {
-        if (!point_covered[i] || !covered_by[i].is_valid()) continue;
-        const Face f = face_near_covering(pts[j], covered_by[i], limit2);
-        if (!f.is_valid()) continue;
-        point_covered[j] = 1;
-        covered_by[j] = f;
-        coverage_queue.push_back(j);
-        break;
-      }
-  }
+      for (const std::uint32_t i : tris[ref_fan[k]])
+        if (point_covered[i] && covered_by[i].is_valid() && try_cover(j, covered_by[i])) break;
   for (size_t next = 0; next < coverage_queue.size(); ++next) {
     const std::uint32_t i = coverage_queue[next];
     for (std::uint32_t k = ref_fan_offset[i]; k < ref_fan_offset[i + 1]; ++k)
-      for (const std::uint32_t j : tris[ref_fan[k]]) {
-        if (point_covered[j]) continue;
-        const Face f = face_near_covering(pts[j], covered_by[i], limit2);
-        if (!f.is_valid()) continue;
-        point_covered[j] = 1;
-        covered_by[j] = f;
-        coverage_queue.push_back(j);
-      }
+      for (const std::uint32_t j : tris[ref_fan[k]])
+        if (!point_covered[j]) try_cover(j, covered_by[i]);
   }
+  // Along each crease, forwards from a's face and backwards from b's, each sample trying the face
+  // of the last one.
+  auto walk_samples = [&](Face from, const SampledCrease& crease, bool forwards) {
+    for (std::uint32_t i = 0; i < crease.count && from.is_valid(); ++i) {
+      const std::uint32_t s = forwards ? crease.first + i : crease.first + crease.count - 1 - i;
+      if (sample_covered[s]) continue;
+      from = face_near_covering(crease_samples[s].p, from, limit2);
+      sample_covered[s] = from.is_valid();
+    }
+  };
   for (const SampledCrease& crease : sampled_creases) {
-    // Forwards from a's face, then backwards from b's, each sample trying the face of the last one.
-    Face from_a = point_covered[crease.a] ? covered_by[crease.a] : Face();
-    for (std::uint32_t s = crease.first; s < crease.first + crease.count && from_a.is_valid(); ++s) {
-      if (sample_covered[s]) continue;
-      from_a = face_near_covering(crease_samples[s].p, from_a, limit2);
-      sample_covered[s] = from_a.is_valid();
-    }
-    Face from_b = point_covered[crease.b] ? covered_by[crease.b] : Face();
-    for (std::uint32_t s = crease.first + crease.count; s-- > crease.first && from_b.is_valid();) {
-      if (sample_covered[s]) continue;
-      from_b = face_near_covering(crease_samples[s].p, from_b, limit2);
-      sample_covered[s] = from_b.is_valid();
-    }
+    if (point_covered[crease.a]) walk_samples(covered_by[crease.a], crease, true);
+    if (point_covered[crease.b]) walk_samples(covered_by[crease.b], crease, false);
   }
 }
 
@@ -321,12 +315,7 @@ size_t Remesher::Impl::cover_reference_points(bool may_split, size_t* splits) {
     *nearest = Face();
     for (Face f : coverage_faces) {
       if (mesh.is_deleted(f)) continue;
-      Vertex c[3];
-      mesh.face_vertices(f, c);
-      double bary[3];
-      const Point q = geometry::closest_point_on_triangle(p, mesh.position(c[0]), mesh.position(c[1]),
-                                                         mesh.position(c[2]), bary);
-      const double d2 = glm::dot(q - p, q - p);
+      const double d2 = face_distance2(f, p);
       if (d2 < best2) {
         best2 = d2;
         *nearest = f;

@@ -336,6 +336,7 @@ struct Remesher::Impl : RemeshScratch {
   std::vector<Face> covered_by;             // per covered tree point: a face within the limit (if known)
   std::vector<std::uint32_t> coverage_queue;
   Face a_face_at(Vertex v) const;
+  double face_distance2(Face f, const Point& p) const;  // squared, from p to its closest point on f
   Face face_near_covering(const Point& p, Face f, double limit2) const;
   void spread_cover_over_reference(double limit2);
   // Points along the reference's creases, covered like its points (coverage.cpp): a crease cut
