@@ -132,6 +132,13 @@ Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, 
   return q;
 }
 
+double detour_bound(const Point& a, const Point& c, const Point& b) {
+  const Vec3 ab = b - a, ac = c - a;
+  const double ab2 = glm::dot(ab, ab);
+  const Vec3 height = ab2 > 0 ? ac - (glm::dot(ac, ab) / ab2) * ab : ac;
+  return glm::length(height);
+}
+
 Point closest_point_on_segment(const Point& p, const Point& a, const Point& b) {
   double t;
   return closest_on_segment(p, a, b, t);

@@ -70,4 +70,10 @@ Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, 
 // Closest point to p on segment ab (a when the segment has zero length).
 Point closest_point_on_segment(const Point& p, const Point& a, const Point& b);
 
+// An upper bound of how far the points of segment ab lie from the path a -> c -> b: the distance
+// of c from the line through a and b. (The distance to side ac grows from a and the distance to
+// side cb shrinks towards b; where they meet, both are at most the triangle's height over ab.)
+// The fidelity check bounds an edge by a path it knows to lie on the reference.
+double detour_bound(const Point& a, const Point& c, const Point& b);
+
 }  // namespace adasculpt::geometry

@@ -46,6 +46,30 @@ constexpr double kCreaseMargin2 = (2.0 / 1.7) * (2.0 / 1.7);
 constexpr double kCreaseLimitScale2 = 0.25;
 }  // namespace
 
+// The largest turn between two triangles around each reference point, as 1 - cos, bounded by twice
+// the widest angle of a triangle's normal from the fan's mean (exact pairs would cost the square
+// of a needle fan's thousands). Needs ref_normal and the fans (build_reference).
+void Remesher::Impl::build_reference_star_turns() {
+  const size_t n_points = tree.points().size();
+  ref_star_turn.assign(n_points, 0.0);
+  for (size_t v = 0; v < n_points; ++v) {
+    Vec3 sum(0.0);
+    for (std::uint32_t k = ref_fan_offset[v]; k < ref_fan_offset[v + 1]; ++k) sum += ref_normal[ref_fan[k]];
+    const double length = glm::length(sum);
+    if (!(length > 0)) {
+      ref_star_turn[v] = 2.0;  // normals all around: a turn of 180 degrees
+      continue;
+    }
+    const Vec3 mean = sum / length;
+    double min_cos = 1.0;
+    for (std::uint32_t k = ref_fan_offset[v]; k < ref_fan_offset[v + 1]; ++k)
+      min_cos = std::min(min_cos, glm::dot(ref_normal[ref_fan[k]], mean));
+    // cos(2 alpha) = 2 cos^2(alpha) - 1, for alpha up to 90 degrees; beyond, 180 degrees.
+    const double cos_turn = min_cos > 0 ? 2.0 * min_cos * min_cos - 1.0 : -1.0;
+    ref_star_turn[v] = 1.0 - cos_turn;
+  }
+}
+
 void Remesher::Impl::build_reference_normals() {
   const auto& pts = tree.points();
   const auto& tris = tree.triangles();
@@ -69,6 +93,16 @@ double Remesher::Impl::fidelity_tolerance() const {
   // tolerances, and the box came out 0.86 % of the diagonal off at epsilon 0.05 % (0.11 % with
   // 2.4-degree caps, which the clean-up leaves alone).
   return tolerance_scale * std::max(opt.epsilon, kToleranceMinLengths * opt.min_length);
+}
+
+std::uint32_t Remesher::Impl::shared_reference_corner(std::uint32_t t0, std::uint32_t t1) const {
+  const auto& a = tree.triangles()[t0];
+  const auto& b = tree.triangles()[t1];
+  std::uint32_t corner = UINT32_MAX;
+  int shared = 0;
+  for (const std::uint32_t i : a)
+    if (i == b[0] || i == b[1] || i == b[2]) ++shared, corner = i;
+  return shared == 1 ? corner : UINT32_MAX;
 }
 
 bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const Point& b, std::uint32_t hint_b,
@@ -105,7 +139,6 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
     const double scale2 = std::clamp(kCreaseMargin2 * (1.0 - 0.5 * one_minus_cos), kCreaseLimitScale2, 1.0);
     quarter2 *= scale2;
     middle2 *= scale2;
-    if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
     // The planes' estimate holds for one crease between the ends: the hint triangles are one, or
     // neighbours across an edge. Farther apart, the surface between them may turn more than once,
     // and an end can lie on the plane of the other's triangle where that triangle does not reach
@@ -115,6 +148,30 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
     const auto& across = ref_adjacent[hint_a];
     const bool one_crease =
         hint_a == hint_b || across[0] == hint_b || across[1] == hint_b || across[2] == hint_b;
+    if (one_crease) {
+      if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
+    } else if (const std::uint32_t corner = shared_reference_corner(hint_a, hint_b); corner == UINT32_MAX) {
+      if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
+    } else {
+      // The arc's estimate trusts the two ends' normals to tell how far the surface turns between
+      // them. Hint triangles that share one corner have that corner's fan between them, which may
+      // turn farther and back: cgal/tripod at epsilon 0.2 % kept an edge 2.6 tolerances off the
+      // part (1.25 x the Hausdorff target), from a face beside an inner corner of the part to
+      // another 9 degrees from it, across the notch where two walls rise from that corner. The
+      // fan's largest turn counts too.
+      if (l2 * std::max(one_minus_cos, ref_star_turn[corner]) <= 8.0 * quarter2) return false;
+      // Else the path over the corner bounds the chord (geometry::detour_bound): most such chords
+      // pass near the corner, and this spares them the walks below.
+      const auto& pts = tree.points();
+      const auto& ta = tree.triangles()[hint_a];
+      const auto& tb = tree.triangles()[hint_b];
+      double bary[3];
+      const Point a_on = geometry::closest_point_on_triangle(a, pts[ta[0]], pts[ta[1]], pts[ta[2]], bary);
+      const Point b_on = geometry::closest_point_on_triangle(b, pts[tb[0]], pts[tb[1]], pts[tb[2]], bary);
+      const double off = std::sqrt(std::max(glm::dot(a - a_on, a - a_on), glm::dot(b - b_on, b - b_on)));
+      const double bound = geometry::detour_bound(a_on, pts[corner], b_on) + off;
+      if (bound * bound <= quarter2) return false;
+    }
     if (one_crease) {
       const auto& pts = tree.points();
       const auto& tris = tree.triangles();

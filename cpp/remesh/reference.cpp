@@ -351,6 +351,7 @@ void Remesher::Impl::build_reference() {
   std::vector<std::uint32_t> fill(ref_fan_offset.begin(), ref_fan_offset.end() - 1);
   for (std::uint32_t ti = 0; ti < tris.size(); ++ti)
     for (auto i : tris[ti]) ref_fan[fill[i]++] = ti;
+  build_reference_star_turns();
 
   // Neighbours across edges: the other triangle in both endpoints' fans.
   ref_adjacent.assign(tris.size(), {UINT32_MAX, UINT32_MAX, UINT32_MAX});

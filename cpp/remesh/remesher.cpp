@@ -154,8 +154,9 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
   return stats;
 }
 
-IterationStats Remesher::iterate(bool pins_move_only) {
+IterationStats Remesher::iterate(bool late) {
   Impl& m = *impl_;
+  m.repair_tolerance_times = late ? Impl::kFidelityOtherSide : Impl::kSliverRepairToleranceTimes;
   if (m.reference_stale) {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
     m.enter_whole_mesh();
@@ -179,7 +180,7 @@ IterationStats Remesher::iterate(bool pins_move_only) {
   m.report.warning.clear();
   IterationStats stats = m.run_iteration(m.opt.projection);
   m.place_sliver_vertices(kPlacedSliverAngleDeg, true);
-  stats.pins = m.cover_reference_points(!pins_move_only, &stats.pin_splits);
+  stats.pins = m.cover_reference_points(!late, &stats.pin_splits);
   m.end_crossing_guard();
   m.leave_whole_mesh();
   return stats;
@@ -355,6 +356,7 @@ size_t Remesher::polish() {
   // Last, what that leaves: a strip with no area between two feature lines laid on one line
   // (degenerate.cpp, collapse_flat_across_features).
   m.merge_flat_across_features = true;
+  m.repair_tolerance_times = Impl::kFidelityOtherSide;
   m.fix_bad_faces(kDegenerateAngleDeg);
   m.merge_flat_across_features = false;
   m.crossing_guard.stop();
@@ -369,7 +371,7 @@ RemeshReport remesh(SurfaceMesh& mesh, const RemeshOptions& options) {
     remesher.keep_guard_grid();  // nothing else edits the mesh here (but the compaction, allowed)
     size_t ordered_slots = mesh.faces_size();
     for (int i = 0; i < options.iterations; ++i) {
-      remesher.iterate(/*pins_move_only=*/i + 2 >= options.iterations);
+      remesher.iterate(/*late=*/i + 2 >= options.iterations);
       remesher.tidy_between_iterations(ordered_slots);
     }
     remesher.polish();

@@ -87,9 +87,11 @@ class Remesher {
   // One iteration over the whole mesh (projection as in the options).
   // Adaptive: ends by putting vertices back on reference points the surface has left farther than
   // the tolerance allows (coverage.cpp; IterationStats::pins), by moving a vertex there or by
-  // splitting an edge there. pins_move_only: no splits, for the last two iterations of a batch
-  // (the long edges to a split's vertex take two more iterations to reach fair triangles).
-  IterationStats iterate(bool pins_move_only = false);
+  // splitting an edge there. late: one of the last two iterations of a batch, where pins only
+  // move vertices (the long edges to a split's vertex take two more iterations to reach fair
+  // triangles) and the sliver repair keeps the surface within the Hausdorff target (no iteration
+  // after it brings the surface back).
+  IterationStats iterate(bool late = false);
   // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
   // that no collapse or flip could remove to better places on the reference surface, then
   // collapses or flips away the triangles still under a degree. Returns the number of vertices

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,14 @@ inline Point brute_closest_on_triangle(const Point& p, const Point& a, const Poi
 
 inline std::string shared_mesh(const std::string& name) {
   return std::string(ADASCULPT_SHARED_MESHES_DIR) + "/" + name;
+}
+// A mesh of the CGAL corpus (scripts/fetch-cgal-meshes.sh) in its cache: $ADASCULPT_DATA, else
+// ~/.cache/adasculpt. A plain clone has none; tests on it skip with a message.
+inline std::string cgal_mesh(const std::string& name) {
+  const char* data = std::getenv("ADASCULPT_DATA");
+  const char* home = std::getenv("HOME");
+  const std::string root = data ? data : (home ? std::string(home) + "/.cache/adasculpt" : std::string(".cache"));
+  return root + "/cgal/data/meshes/" + name;
 }
 inline std::string test_mesh(const std::string& name) {
   return std::string(ADASCULPT_SOURCE_DIR) + "/tests/data/meshes/" + name;

@@ -2,6 +2,7 @@
 // of the seven Voronoi regions of a triangle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -99,4 +100,28 @@ TEST(GeometryTriangle, ClosestPointRandomAgainstBruteForce) {
     ASSERT_NEAR(bary[0] + bary[1] + bary[2], 1.0, 1e-12);
     for (double w : bary) ASSERT_GE(w, -1e-12);
   }
+}
+
+// detour_bound (the fidelity check's bound of an edge by a path over a reference corner): every
+// point of ab lies within it of the path a -> c -> b, whatever the triangle's shape (obtuse at a or
+// b, nearly flat, c near the line).
+TEST(GeometryTriangle, DetourBoundHoldsForEveryPointOfTheChord) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int i = 0; i < 5000; ++i) {
+    Point a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    if (i % 7 == 0) c = a + 0.4 * (b - a) + 1e-3 * Vec3(u(rng), u(rng), u(rng));  // nearly on the chord
+    if (i % 11 == 0) c = a + 2.5 * (b - a) + 0.1 * Vec3(u(rng), u(rng), u(rng));  // far beyond b
+    const double bound = detour_bound(a, c, b);
+    double farthest = 0;
+    for (int k = 0; k <= 200; ++k) {
+      const Point p = a + (k / 200.0) * (b - a);
+      farthest = std::max(farthest, std::min(glm::length(p - closest_point_on_segment(p, a, c)),
+                                             glm::length(p - closest_point_on_segment(p, c, b))));
+    }
+    ASSERT_LE(farthest, bound * (1 + 1e-12) + 1e-15) << "case " << i;
+  }
+  // A right angle at c, 1 over the chord: the bound is that height; the chord's midpoint lies
+  // 0.71 from the sides.
+  EXPECT_NEAR(detour_bound({0, 0, 0}, {1, 1, 0}, {2, 0, 0}), 1.0, 1e-15);
 }
