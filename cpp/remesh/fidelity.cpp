@@ -148,9 +148,8 @@ bool Remesher::Impl::segment_strays(const Point& a, std::uint32_t hint_a, const 
     const auto& across = ref_adjacent[hint_a];
     const bool one_crease =
         hint_a == hint_b || across[0] == hint_b || across[1] == hint_b || across[2] == hint_b;
-    if (one_crease) {
-      if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
-    } else if (const std::uint32_t corner = shared_reference_corner(hint_a, hint_b); corner == UINT32_MAX) {
+    const std::uint32_t corner = one_crease ? UINT32_MAX : shared_reference_corner(hint_a, hint_b);
+    if (corner == UINT32_MAX) {
       if (l2 * one_minus_cos <= 8.0 * quarter2) return false;
     } else {
       // The arc's estimate trusts the two ends' normals to tell how far the surface turns between
