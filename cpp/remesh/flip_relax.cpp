@@ -332,9 +332,10 @@ void Remesher::Impl::relax_vertices() {
 // when it is short, otherwise flip their longest edge (a "cap" has no short edge); a cap on a
 // border or feature line, whose longest edge may not flip, collapses one of its other two edges.
 //
-// The collapse and the flip may take the surface a few tolerances from the reference
-// (repair_tolerance_times), not farther (the regular passes keep one; held to one here, the sliver stays more often: gen/thin_plate at
-// epsilon 0.05 % got 4 % more vertices and a worse rim). Without a bound:
+// The collapse and the flip may take the surface two tolerances from the reference (the Hausdorff
+// target, kSliverRepairToleranceTimes), not farther (the regular passes keep one; held to one
+// here, the sliver stays more often: gen/thin_plate at epsilon 0.05 % got 4 % more vertices and a
+// worse rim). Without a bound:
 // - the collapses joined far sides of gen/sliver_cylinder with chords through its inside: the
 //   vertex budget cuts the first split pass of its needle strips short, and the repair then took
 //   7.8k vertices down to 740, the chords' midpoints 0.05 inside, out of the projection's reach in
@@ -402,7 +403,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
           const Point& target = mesh.position(mesh.to_vertex(h));
           if (collapse_geometry_ok(h, target, false, false, 0.5) && collapse_topology_ok(h) &&
               !collapse_crosses(h, target, false) &&
-              collapse_keeps_fidelity(h, target, false, repair_tolerance_times) &&
+              collapse_keeps_fidelity(h, target, false, kSliverRepairToleranceTimes) &&
               collapse_with_mirror(h, false) != 0)
             return true;
         }
@@ -411,7 +412,7 @@ size_t Remesher::Impl::fix_bad_faces(double angle_deg) {
       auto flip_longest = [&]() {
         const Edge e = mesh.edge(hs[longest]);
         if (!repair_flip_ok(e) || !flip_geometry_ok(e, false)) return false;
-        if (!flip_keeps_fidelity(e, repair_tolerance_times)) return false;
+        if (!flip_keeps_fidelity(e, kSliverRepairToleranceTimes)) return false;
         const Edge image = flip_partner(e);
         if (!image.is_valid() || (image != e && !mesh.is_flip_ok(image))) return false;
         mesh.flip(e);

@@ -156,7 +156,6 @@ IterationStats Remesher::Impl::run_iteration(bool do_project) {
 
 IterationStats Remesher::iterate(bool late) {
   Impl& m = *impl_;
-  m.repair_tolerance_times = late ? Impl::kFidelityOtherSide : Impl::kSliverRepairToleranceTimes;
   if (m.reference_stale) {
     // Rebuilt lazily so that a series of edits between iterations costs one rebuild.
     m.enter_whole_mesh();
@@ -356,7 +355,6 @@ size_t Remesher::polish() {
   // Last, what that leaves: a strip with no area between two feature lines laid on one line
   // (degenerate.cpp, collapse_flat_across_features).
   m.merge_flat_across_features = true;
-  m.repair_tolerance_times = Impl::kFidelityOtherSide;
   m.fix_bad_faces(kDegenerateAngleDeg);
   m.merge_flat_across_features = false;
   m.crossing_guard.stop();

@@ -89,8 +89,7 @@ class Remesher {
   // the tolerance allows (coverage.cpp; IterationStats::pins), by moving a vertex there or by
   // splitting an edge there. late: one of the last two iterations of a batch, where pins only
   // move vertices (the long edges to a split's vertex take two more iterations to reach fair
-  // triangles) and the sliver repair keeps the surface within the Hausdorff target (no iteration
-  // after it brings the surface back).
+  // triangles).
   IterationStats iterate(bool late = false);
   // After the whole-mesh iterations: moves the corners of the triangles still under 25 degrees
   // that no collapse or flip could remove to better places on the reference surface, then
