@@ -1,5 +1,6 @@
 #include "sculpt/session_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -90,8 +91,11 @@ GrabStep parse_grab(const json& g, const std::string& ctx) {
     if (!r.contains("axis") || !r.contains("degrees"))
       fail_at(ctx, "rotate", "must be an object {\"axis\": [x,y,z], \"degrees\": a}");
     s.axis = vec3(r["axis"], ctx, "rotate.axis");
-    if (!(glm::length(s.axis) > 0)) fail_at(ctx, "rotate.axis", "must not be the zero vector");
-    s.axis = glm::normalize(s.axis);
+    // Scaled to its largest component first: the length of [0, 0, 1e308] overflows, and
+    // normalizing by it wrote a zero axis back (found by the session_file fuzzer).
+    const double largest = std::max({std::abs(s.axis.x), std::abs(s.axis.y), std::abs(s.axis.z)});
+    if (!(largest > 0)) fail_at(ctx, "rotate.axis", "must not be the zero vector");
+    s.axis = glm::normalize(s.axis / largest);
     if (!r["degrees"].is_number() || !std::isfinite(r["degrees"].get<double>()))
       fail_at(ctx, "rotate.degrees", "must be a number");
     s.degrees = r["degrees"].get<double>();
